@@ -1,0 +1,109 @@
+#include "core/particle_set.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <type_traits>
+#include <string>
+
+namespace sc {
+
+template <int D>
+std::size_t ParticleSet<D>::append() {
+  visit_fields([](std::string_view, auto& field) { field.emplace_back(); });
+  const std::size_t i = size() - 1;
+  x[i].setZero(); v[i].setZero(); force[i].setZero();
+  m[i] = 0.0; h[i] = 0.0; rho[i] = 1.0; rho0[i] = 1.0; p[i] = 0.0;
+  phase[i] = static_cast<std::uint8_t>(Phase::Water);
+  rough[i] = 0;
+  id[i] = next_id_++;
+  return i;
+}
+
+template <int D>
+void ParticleSet<D>::queue_remove(std::size_t i) {
+  if (remove_flag_.size() != size()) remove_flag_.assign(size(), 0);
+  remove_flag_[i] = 1;
+}
+
+template <int D>
+ParticleSet<D>& ParticleSet<D>::additions() {
+  if (additions_.empty()) {
+    additions_.emplace_back();
+    additions_.front().next_id_ = next_id_;
+  }
+  return additions_.front();
+}
+
+template <int D>
+bool ParticleSet<D>::compact() {
+  bool changed = false;
+  if (remove_flag_.size() == size()) {
+    std::size_t n = 0;
+    std::vector<std::size_t> keep;
+    keep.reserve(size());
+    for (std::size_t i = 0; i < size(); ++i)
+      if (!remove_flag_[i]) keep.push_back(i);
+    n = keep.size();
+    if (n != size()) {
+      permute(keep);
+      changed = true;
+    }
+  }
+  remove_flag_.clear();
+  if (!additions_.empty() && additions_.front().size() > 0) {
+    ParticleSet& add = additions_.front();
+    visit_fields([&add](std::string_view name, auto& field) {
+      add.visit_fields([&](std::string_view other, auto& src) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(field)>, std::decay_t<decltype(src)>>)
+          if (name == other) field.insert(field.end(), src.begin(), src.end());
+      });
+    });
+    next_id_ = add.next_id_;
+    additions_.clear();
+    changed = true;
+  }
+  return changed;
+}
+
+template <int D>
+void ParticleSet<D>::permute(const std::vector<std::size_t>& order) {
+  visit_fields([&order](std::string_view, auto& field) {
+    std::decay_t<decltype(field)> out;
+    out.reserve(order.size());
+    for (std::size_t k : order) out.push_back(field[k]);
+    field.swap(out);
+  });
+}
+
+template <int D>
+std::string ParticleSet<D>::checksum() const {
+  std::uint64_t hash = 1469598103934665603ull;
+  auto mix = [&hash](const void* data, std::size_t bytes) {
+    const auto* c = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < bytes; ++k) {
+      hash ^= c[k];
+      hash *= 1099511628211ull;
+    }
+  };
+  for (std::size_t i = 0; i < size(); ++i) {
+    mix(x[i].data(), sizeof(double) * D);
+    mix(v[i].data(), sizeof(double) * D);
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash));
+  return buf;
+}
+
+std::string_view phase_name(Phase p) {
+  switch (p) {
+    case Phase::Water: return "water";
+    case Phase::Sand: return "sand";
+    case Phase::Boundary: return "boundary";
+  }
+  return "unknown";
+}
+
+template class ParticleSet<2>;
+template class ParticleSet<3>;
+
+}  // namespace sc

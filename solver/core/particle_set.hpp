@@ -1,0 +1,79 @@
+// ParticleSet: every particle of a scene (water, sand, boundary) as a structure of arrays.
+//
+// Every per-particle field is declared once, in `visit_fields`, which the generic operations
+// (append, compaction, permutation, VTU output, checksums) walk. To add a field, add the member
+// and one line in `visit_fields`; nothing else needs to change.
+//
+// Deletions and creations are queued during a step (`queue_remove`, `additions()`) and applied by
+// `compact()` at its end: removals in index order, then additions in the order they were queued,
+// so the result does not depend on thread scheduling as long as additions are queued serially.
+#pragma once
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace sc {
+
+template <int D>
+class ParticleSet {
+ public:
+  using V = Vec<D>;
+  using VecArray = std::vector<V, Eigen::aligned_allocator<V>>;
+
+  // --- kinematics and SPH state -------------------------------------------------------------
+  VecArray x;                   ///< position [m]
+  VecArray v;                   ///< velocity [m/s]
+  VecArray force;               ///< total force of the current step [N]
+  std::vector<double> m;        ///< mass [kg]
+  std::vector<double> h;        ///< kernel support radius [m]
+  std::vector<double> rho;      ///< density [kg/m^3] (eq 6)
+  std::vector<double> rho0;     ///< rest density [kg/m^3]
+  std::vector<double> p;        ///< pressure [Pa] (eq 7 or linear state equation)
+  std::vector<std::uint8_t> phase;   ///< Phase as an integer (VTU-friendly)
+  std::vector<std::uint8_t> rough;   ///< boundary particles: 1 = no-slip (rough) wall, 0 = slip
+  std::vector<std::int64_t> id;      ///< stable identity, never reused within a run
+
+  template <class F>
+  void visit_fields(F&& f) {
+    f("position", x); f("velocity", v); f("force", force);
+    f("mass", m); f("support_radius", h); f("density", rho); f("rest_density", rho0);
+    f("pressure", p); f("phase", phase); f("rough", rough); f("id", id);
+  }
+  template <class F>
+  void visit_fields(F&& f) const { const_cast<ParticleSet*>(this)->visit_fields(f); }
+
+  std::size_t size() const { return x.size(); }
+  Phase phase_of(std::size_t i) const { return static_cast<Phase>(phase[i]); }
+  bool moves(std::size_t i) const { return phase_of(i) != Phase::Boundary; }
+  double volume(std::size_t i) const { return m[i] / rho[i]; }
+
+  /// Appends one particle with every field zero (rest density and density 1 to keep V finite)
+  /// and a fresh id; returns its index.
+  std::size_t append();
+
+  /// Queues particle i for deletion at the next compact().
+  void queue_remove(std::size_t i);
+  /// Particles to be created at the next compact(); fill them with additions().append().
+  ParticleSet& additions();
+  /// Applies queued removals (index order) and additions (queue order). Returns true if the
+  /// particle set changed (neighbour lists must then be rebuilt).
+  bool compact();
+  /// Reorders every field: new index k holds old particle order[k].
+  void permute(const std::vector<std::size_t>& order);
+  /// Bytes of all positions and velocities hashed (FNV-1a 64), as 16 hex digits.
+  std::string checksum() const;
+
+  std::int64_t next_id() const { return next_id_; }
+  void set_next_id(std::int64_t n) { next_id_ = n; }
+
+ private:
+  std::vector<std::uint8_t> remove_flag_;
+  std::vector<ParticleSet> additions_;  // zero or one element (a class cannot hold itself)
+  std::int64_t next_id_ = 0;
+};
+
+std::string_view phase_name(Phase p);
+
+}  // namespace sc

@@ -1,0 +1,124 @@
+#include "io/case_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sc {
+
+namespace {
+
+std::vector<std::string> side_names(int dim) {
+  std::vector<std::string> out;
+  const char* axes = "xyz";
+  for (int d = 0; d < dim; ++d) {
+    out.push_back(std::string(1, axes[d]) + "-");
+    out.push_back(std::string(1, axes[d]) + "+");
+  }
+  return out;
+}
+
+void check_box(JsonObject& o, const std::vector<double>& lo, const std::vector<double>& hi) {
+  for (std::size_t d = 0; d < lo.size(); ++d)
+    if (!(hi[d] > lo[d])) o.fail("max", "must exceed min in every coordinate (axis " + std::to_string(d) + ")");
+}
+
+void read_water(JsonObject o, CaseSpec& c) {
+  c.water.rest_density = o.positive("rest_density");
+  c.water.viscosity = o.non_negative("viscosity", 0.0);
+  c.water.surface_tension = o.non_negative("surface_tension", 0.0);
+  c.water.density_kernel = o.one_of("density_kernel", {"spiky", "poly6"}, "spiky") == "spiky"
+                               ? kernel::DensityKernel::Spiky : kernel::DensityKernel::Poly6;
+  c.water.gradient_correction = o.boolean("gradient_correction", true);
+  c.water.mueller_half_pressure = o.boolean("mueller_half_pressure", false);
+  const std::string eos = o.one_of("equation_of_state", {"tait", "linear"}, "tait");
+  c.eos.kind = eos == "tait" ? EquationOfState::Kind::Tait : EquationOfState::Kind::Linear;
+  c.eos.sound_speed = o.positive("sound_speed");
+  c.eos.gamma = o.in_range("gamma", 1.0, 10.0, false, 7.0);
+  c.eos.clamp_negative = o.boolean("clamp_negative_pressure", true);
+  o.finish();
+}
+
+void read_tank(JsonObject o, CaseSpec& c) {
+  TankSpec t;
+  t.min = o.numbers("min", c.dimension);
+  t.max = o.numbers("max", c.dimension);
+  check_box(o, t.min, t.max);
+  JsonObject sides = o.object("sides");
+  for (const auto& name : side_names(c.dimension))
+    t.sides[name] = sides.one_of(name, {"no_slip", "slip", "open"});
+  sides.finish();
+  o.finish();
+  c.tank = t;
+}
+
+void read_time(JsonObject o, CaseSpec& c) {
+  c.end_time = o.positive("end");
+  c.dt_max = o.positive("dt", 0.001);
+  c.cfl = o.in_range("cfl", 0.0, 1.0, false, 0.0);
+  c.frame_interval = o.non_negative("frame_interval", 0.0);
+  c.relax_until = o.non_negative("relax_until", 0.0);
+  c.relax_rate = o.non_negative("relax_rate", 0.0);
+  if (c.relax_until >= c.end_time) o.fail("relax_until", "must be earlier than time.end");
+  o.finish();
+}
+
+void read_tiers(JsonObject o, CaseSpec& c) {
+  for (const char* tier : {"quick", "full"}) {
+    JsonObject t = o.object(tier);
+    TierSpec spec;
+    spec.spacings = t.numbers("spacings");
+    for (double s : spec.spacings)
+      if (!(s > 0.0)) t.fail("spacings", "every spacing must be > 0");
+    spec.end_time = t.positive("end_time", 0.0);
+    t.finish();
+    c.tiers[tier] = spec;
+  }
+  o.finish();
+}
+
+}  // namespace
+
+CaseSpec load_case(const std::string& path) {
+  const json doc = read_json_file(path);
+  JsonObject o(doc, "", path);
+  CaseSpec c;
+  c.file = path;
+  c.name = o.string("name");
+  c.description = o.string("description", "");
+  c.dimension = static_cast<int>(o.integer("dimension", 2, 3));
+  JsonObject domain = o.object("domain");
+  c.domain_min = domain.numbers("min", c.dimension);
+  c.domain_max = domain.numbers("max", c.dimension);
+  check_box(domain, c.domain_min, c.domain_max);
+  domain.finish();
+  c.gravity = o.numbers("gravity", c.dimension);
+  read_time(o.object("time"), c);
+  c.support_ratio = o.in_range("support_ratio", 1.0, 4.0, false, 2.0);
+  c.density_window = o.non_negative("density_window", 0.0);
+  read_water(o.object("water"), c);
+  for (JsonObject b : o.objects("blocks")) {
+    BlockSpec block;
+    block.phase = b.one_of("phase", {"water"});
+    block.min = b.numbers("min", c.dimension);
+    block.max = b.numbers("max", c.dimension);
+    check_box(b, block.min, block.max);
+    for (int d = 0; d < c.dimension; ++d)
+      if (block.min[d] < c.domain_min[d] || block.max[d] > c.domain_max[d])
+        b.fail("max", "block must lie inside the domain");
+    b.finish();
+    c.blocks.push_back(block);
+  }
+  if (o.has("tank")) read_tank(o.object("tank"), c);
+  c.validation = o.has("validation") ? o.raw("validation") : json::object();
+  read_tiers(o.object("tiers"), c);
+  o.finish();
+  const double largest_spacing = std::max(*std::max_element(c.tiers["quick"].spacings.begin(), c.tiers["quick"].spacings.end()),
+                                          *std::max_element(c.tiers["full"].spacings.begin(), c.tiers["full"].spacings.end()));
+  for (const auto& b : c.blocks)
+    for (int d = 0; d < c.dimension; ++d)
+      if (b.max[d] - b.min[d] < largest_spacing)
+        throw InputError(path, "/blocks", "every block must be at least one particle spacing wide");
+  return c;
+}
+
+}  // namespace sc

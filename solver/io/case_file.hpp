@@ -1,0 +1,57 @@
+// The case file (cases/<name>/case.json): scene, parameters, validation and tiers.
+// The format is documented in cases/README.md; every field is checked on load.
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/json_reader.hpp"
+#include "sph/equation_of_state.hpp"
+#include "water/water_forces.hpp"
+
+namespace sc {
+
+/// A rectangular block of particles on a lattice at the case spacing.
+struct BlockSpec {
+  std::string phase;             ///< "water" (later: "sand")
+  std::vector<double> min, max;  ///< corners [m]
+};
+
+/// A container whose walls are layers of boundary particles outside [min, max].
+/// Sides are named "x-", "x+", "y-", "y+" (and "z-", "z+" in 3-D); each is "no_slip" (rough),
+/// "slip" or "open" (no wall).
+struct TankSpec {
+  std::vector<double> min, max;
+  std::map<std::string, std::string> sides;
+};
+
+struct TierSpec {
+  std::vector<double> spacings;  ///< particle spacings [m], coarse to fine; the last one is reported
+  double end_time = 0.0;         ///< [s]; 0 = the case's time.end
+};
+
+struct CaseSpec {
+  std::string file, name, description;
+  int dimension = 2;
+  std::vector<double> domain_min, domain_max, gravity;
+  double end_time = 1.0;        ///< [s]
+  double dt_max = 0.001;        ///< [s] the fixed step (thesis default) or the cap of the CFL step
+  double cfl = 0.0;             ///< Courant number; 0 = fixed step dt_max
+  double frame_interval = 0.0;  ///< [s] between VTU frames in `run`; 0 = first and last only
+  double relax_until = 0.0;     ///< [s] initial relaxation phase (velocity damping) ends here
+  double relax_rate = 0.0;      ///< [1/s] damping rate during the relaxation
+  double support_ratio = 2.0;   ///< kernel support h / particle spacing
+  double density_window = 0.0;  ///< blow-up guard: |ρ/ρ0 − 1| above this stops the run; 0 = off
+  EquationOfState eos;
+  WaterParams water;
+  std::vector<BlockSpec> blocks;
+  std::optional<TankSpec> tank;
+  json validation;              ///< checked by the observer named in it (validation/observers)
+  std::map<std::string, TierSpec> tiers;
+};
+
+/// Loads and checks a case file. Throws InputError (file, JSON path, rule) on any problem.
+CaseSpec load_case(const std::string& path);
+
+}  // namespace sc

@@ -1,0 +1,104 @@
+#include "scene/scene_builder.hpp"
+
+#include <cmath>
+
+#include "sph/kernels.hpp"
+
+namespace sc {
+
+template <int D>
+double lattice_mass(double rho0, double dx, double h, kernel::DensityKernel kind) {
+  const int reach = static_cast<int>(std::ceil(h / dx)) + 1;
+  double sum = 0.0;
+  std::array<int, D> k;
+  k.fill(-reach);
+  while (true) {
+    double r2 = 0.0;
+    for (int d = 0; d < D; ++d) r2 += (k[d] * dx) * (k[d] * dx);
+    sum += kernel::density_kernel<D>(kind, std::sqrt(r2), h);
+    int d = 0;
+    while (d < D && ++k[d] > reach) k[d++] = -reach;
+    if (d == D) break;
+  }
+  return rho0 / sum;
+}
+
+template <int D>
+std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>> lattice_points(const Vec<D>& min, const Vec<D>& max, double dx) {
+  std::array<long, D> count;
+  for (int d = 0; d < D; ++d) count[d] = std::max(1L, std::lround((max[d] - min[d]) / dx));
+  std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>> out;
+  std::array<long, D> k;
+  k.fill(0);
+  while (true) {
+    Vec<D> p;
+    for (int d = 0; d < D; ++d) p[d] = min[d] + (k[d] + 0.5) * dx;
+    out.push_back(p);
+    int d = 0;
+    while (d < D && ++k[d] >= count[d]) k[d++] = 0;
+    if (d == D) break;
+  }
+  return out;
+}
+
+namespace {
+
+template <int D>
+void add_particle(ParticleSet<D>& ps, const Vec<D>& x, Phase phase, double mass, double h, double rho0, bool rough) {
+  const std::size_t i = ps.append();
+  ps.x[i] = x;
+  ps.m[i] = mass;
+  ps.h[i] = h;
+  ps.rho0[i] = rho0;
+  ps.rho[i] = rho0;
+  ps.phase[i] = static_cast<std::uint8_t>(phase);
+  ps.rough[i] = rough ? 1 : 0;
+}
+
+/// Wall layers of the tank: lattice points outside [min, max] within `layers` spacings of a side
+/// that is not open. A point is rough if any wall side it lies beyond is no-slip.
+template <int D>
+void add_tank(ParticleSet<D>& ps, const TankSpec& tank, double dx, double h, double mass, double rho0) {
+  const int layers = static_cast<int>(std::ceil(h / dx));
+  const char* axes = "xyz";
+  Vec<D> lo = to_vec<D>(tank.min), hi = to_vec<D>(tank.max);
+  Vec<D> ext_lo = lo, ext_hi = hi;
+  for (int d = 0; d < D; ++d) {
+    if (tank.sides.at(std::string(1, axes[d]) + "-") != "open") ext_lo[d] -= layers * dx;
+    if (tank.sides.at(std::string(1, axes[d]) + "+") != "open") ext_hi[d] += layers * dx;
+  }
+  for (const Vec<D>& p : lattice_points<D>(ext_lo, ext_hi, dx)) {
+    bool outside = false, rough = false;
+    for (int d = 0; d < D; ++d) {
+      const char* side = p[d] < lo[d] ? "-" : (p[d] > hi[d] ? "+" : nullptr);
+      if (!side) continue;
+      outside = true;
+      if (tank.sides.at(std::string(1, axes[d]) + side) == "no_slip") rough = true;
+    }
+    if (outside) add_particle(ps, p, Phase::Boundary, mass, h, rho0, rough);
+  }
+}
+
+}  // namespace
+
+template <int D>
+ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
+  ParticleSet<D> ps;
+  const double h = spec.support_ratio * dx;
+  const double rho0 = spec.water.rest_density;
+  const double mass = lattice_mass<D>(rho0, dx, h, spec.water.density_kernel);
+  for (const BlockSpec& block : spec.blocks)
+    for (const Vec<D>& p : lattice_points<D>(to_vec<D>(block.min), to_vec<D>(block.max), dx))
+      add_particle(ps, p, Phase::Water, mass, h, rho0, false);
+  if (spec.tank) add_tank(ps, *spec.tank, dx, h, mass, rho0);
+  return ps;
+}
+
+template double lattice_mass<2>(double, double, double, kernel::DensityKernel);
+template double lattice_mass<3>(double, double, double, kernel::DensityKernel);
+template std::vector<Vec<2>, Eigen::aligned_allocator<Vec<2>>> lattice_points<2>(const Vec<2>&, const Vec<2>&, double);
+template std::vector<Vec<3>, Eigen::aligned_allocator<Vec<3>>> lattice_points<3>(const Vec<3>&, const Vec<3>&, double);
+template ParticleSet<2> build_scene<2>(const CaseSpec&, double);
+template ParticleSet<3> build_scene<3>(const CaseSpec&, double);
+
+}  // namespace sc

@@ -1,0 +1,30 @@
+// Builds the particles of a case at a given spacing: lattice blocks of water and the tank walls.
+#pragma once
+#include "core/particle_set.hpp"
+#include "io/case_file.hpp"
+#include "sph/kernels.hpp"
+
+namespace sc {
+
+/// Mass that makes the summation density (eq 6, kernel k, support h) of an unbounded lattice of
+/// spacing dx equal to rho0 exactly: m = ρ0 / Σ_k W(|k dx|, h). This removes the kernel's
+/// discretisation bias from the rest state (a lattice at rest spacing has zero pressure).
+template <int D>
+double lattice_mass(double rho0, double dx, double h, kernel::DensityKernel k);
+
+/// Positions of the lattice points (min + (k + 1/2) dx) inside the box [min, max).
+template <int D>
+std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>> lattice_points(const Vec<D>& min, const Vec<D>& max, double dx);
+
+/// The particles of `spec` at spacing dx: its blocks (in file order) then its tank walls.
+template <int D>
+ParticleSet<D> build_scene(const CaseSpec& spec, double dx);
+
+template <int D>
+Vec<D> to_vec(const std::vector<double>& v) {
+  Vec<D> out;
+  for (int d = 0; d < D; ++d) out[d] = v[d];
+  return out;
+}
+
+}  // namespace sc

@@ -1,0 +1,138 @@
+#include "simulator/simulator.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "boundary/wall_pressure.hpp"
+#include "scene/scene_builder.hpp"
+#include "sph/density.hpp"
+#include "water/water_forces.hpp"
+
+namespace sc {
+
+SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacing) {
+  SimulationParams p;
+  p.dt_max = spec.dt_max;
+  p.cfl = spec.cfl;
+  p.density_window = spec.density_window;
+  p.relax_until = spec.relax_until;
+  p.relax_rate = spec.relax_rate;
+  p.eos = spec.eos;
+  p.water = spec.water;
+  const double volume = std::pow(spacing, spec.dimension);
+  p.water.reference_mass = spec.water.rest_density * volume;
+  p.gravity = spec.gravity;
+  p.domain_min = spec.domain_min;
+  p.domain_max = spec.domain_max;
+  return p;
+}
+
+template <int D>
+Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params)
+    : ps_(std::move(particles)), params_(std::move(params)) {
+  g_ = to_vec<D>(params_.gravity);
+  lo_ = to_vec<D>(params_.domain_min);
+  hi_ = to_vec<D>(params_.domain_max);
+  check_state();
+}
+
+template <int D>
+double Simulator<D>::stable_dt() const {
+  if (params_.cfl <= 0.0) return params_.dt_max;
+  // Length scale: the particle spacing (m/ρ0)^(1/D), not the kernel support, so the limits do not
+  // loosen when a case chooses a wider support.
+  double hmin = INFINITY, vmax = 0.0, amax = g_.norm();
+  for (std::size_t i = 0; i < ps_.size(); ++i) {
+    if (!ps_.moves(i)) continue;
+    hmin = std::min(hmin, std::pow(ps_.m[i] / ps_.rho0[i], 1.0 / D));
+    vmax = std::max(vmax, ps_.v[i].norm());
+    amax = std::max(amax, ps_.force[i].norm() / ps_.m[i]);
+  }
+  if (!std::isfinite(hmin)) return params_.dt_max;
+  double dt = params_.dt_max;
+  dt = std::min(dt, params_.cfl * hmin / (params_.eos.sound_speed + vmax));
+  if (amax > 0.0) dt = std::min(dt, 0.25 * std::sqrt(hmin / amax));
+  if (params_.water.viscosity > 0.0)
+    dt = std::min(dt, 0.125 * hmin * hmin * params_.water.rest_density / params_.water.viscosity);
+  return dt;
+}
+
+template <int D>
+void Simulator<D>::compute_forces() {
+  {
+    auto t = timers_.time(Stage::Neighbours);
+    nb_.rebuild(ps_);
+  }
+  {
+    auto t = timers_.time(Stage::Density);
+    compute_density(ps_, nb_, params_.water.density_kernel);
+    const auto n = static_cast<std::int64_t>(ps_.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i)
+      if (ps_.moves(i)) ps_.p[i] = params_.eos.pressure(ps_.rho[i], ps_.rho0[i]);
+    extrapolate_wall_pressure(ps_, nb_, g_, params_.eos);
+  }
+  {
+    auto t = timers_.time(Stage::Forces);
+    const auto n = static_cast<std::int64_t>(ps_.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t i = 0; i < n; ++i) ps_.force[i] = ps_.moves(i) ? Vec<D>(ps_.m[i] * g_) : Vec<D>::Zero();
+    if (params_.water.gradient_correction) compute_gradient_corrections(ps_, nb_, correction_);
+    add_water_forces(ps_, nb_, params_.water, correction_);
+  }
+}
+
+template <int D>
+void Simulator<D>::integrate(double dt) {
+  auto t = timers_.time(Stage::Integration);
+  const auto n = static_cast<std::int64_t>(ps_.size());
+  // Initial relaxation (a numerical device for cases that start from a lattice, not physics):
+  // before relax_until, velocities decay at relax_rate so the start-up waves die out.
+  const double damping = time_ < params_.relax_until ? std::exp(-params_.relax_rate * dt) : 1.0;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!ps_.moves(i)) continue;
+    ps_.v[i] = damping * (ps_.v[i] + dt * acceleration<D>(ps_.force[i], ps_.m[i]));  // symplectic Euler
+    ps_.x[i] += dt * ps_.v[i];
+  }
+}
+
+template <int D>
+double Simulator<D>::step() {
+  last_good_ = ps_;
+  compute_forces();
+  const double dt = stable_dt();
+  integrate(dt);
+  ps_.compact();
+  try {
+    check_state();
+  } catch (const BlowUpError&) {
+    ps_ = last_good_;
+    throw;
+  }
+  time_ += dt;
+  ++steps_;
+  return dt;
+}
+
+template <int D>
+void Simulator<D>::check_state() const {
+  for (std::size_t i = 0; i < ps_.size(); ++i) {
+    auto fail = [&](const char* field, const std::string& what) {
+      throw BlowUpError(steps_ + 1, time_, static_cast<long>(i), std::string(phase_name(ps_.phase_of(i))), field, what);
+    };
+    if (!ps_.x[i].allFinite()) fail("position", "not finite");
+    if (!ps_.v[i].allFinite()) fail("velocity", "not finite");
+    if (!std::isfinite(ps_.rho[i]) || !std::isfinite(ps_.p[i])) fail("density", "not finite");
+    for (int d = 0; d < D; ++d)
+      if (ps_.x[i][d] < lo_[d] || ps_.x[i][d] > hi_[d]) fail("position", "particle left the domain");
+    if (params_.density_window > 0.0 && ps_.moves(i) && steps_ > 0 &&
+        std::abs(ps_.rho[i] / ps_.rho0[i] - 1.0) > params_.density_window)
+      fail("density", "outside the configured window |rho/rho0 - 1| <= " + std::to_string(params_.density_window));
+  }
+}
+
+template class Simulator<2>;
+template class Simulator<3>;
+
+}  // namespace sc

@@ -1,0 +1,18 @@
+// Cohesion-based surface tension (Becker & Teschner 2007), in a form symmetric for unequal masses.
+#pragma once
+#include "sph/kernels.hpp"
+
+namespace sc {
+
+/// Surface-tension (cohesion) force on i from j, after Becker & Teschner 2007,
+/// a_i = −(κ/m_i) Σ_j m_j (x_i − x_j) W(|x_ij|, h). Their pair force −κ m_j (x_i − x_j) W is
+/// antisymmetric only for equal masses; adaptive sampling breaks that, so this uses the symmetric
+/// variant f_ij = −κ' m_i m_j (x_i − x_j) W_poly6(|x_ij|, h̄), h̄ = (h_i + h_j)/2, κ' = κ/m_ref,
+/// which equals Becker & Teschner for uniform mass m_ref (EQUATIONS.md, "Surface tension").
+template <int D>
+inline Vec<D> surface_tension_pair_force(double kappa_prime, double mi, double mj, const Vec<D>& d, double r,
+                                         double hi, double hj) {
+  return (-kappa_prime * mi * mj * kernel::poly6<D>(r, 0.5 * (hi + hj))) * d;
+}
+
+}  // namespace sc

@@ -1,0 +1,40 @@
+#include "water/water_forces.hpp"
+
+#include "water/pressure_force.hpp"
+#include "water/surface_tension.hpp"
+#include "water/viscosity_force.hpp"
+
+namespace sc {
+
+template <int D>
+void add_water_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const WaterParams& params,
+                      const MatArray<D>& correction) {
+  const bool corrected = params.gradient_correction && correction.size() == ps.size();
+  const auto n = static_cast<std::int64_t>(ps.size());
+  const double kappa_prime = params.surface_tension / params.reference_mass;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (ps.phase_of(i) != Phase::Water) continue;
+    const double Vi = ps.volume(i);
+    Vec<D> f = Vec<D>::Zero();
+    for (const auto j : nb.of(i)) {
+      if (j == static_cast<std::size_t>(i)) continue;
+      const Vec<D> d = ps.x[i] - ps.x[j];
+      const double r = d.norm();
+      const double Vj = ps.volume(j);
+      const Vec<D> fp = pressure_pair_force<D>(Vi, Vj, ps.p[i], ps.p[j], d, r, ps.h[i], ps.h[j], params.mueller_half_pressure);
+      f += corrected ? Vec<D>(0.5 * (correction[i] + correction[j]) * fp) : fp;
+      const bool boundary = ps.phase_of(j) == Phase::Boundary;
+      if (!boundary || ps.rough[j])
+        f += viscosity_pair_force<D>(params.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
+      if (!boundary && kappa_prime != 0.0)
+        f += surface_tension_pair_force<D>(kappa_prime, ps.m[i], ps.m[j], d, r, ps.h[i], ps.h[j]);
+    }
+    ps.force[i] += f;
+  }
+}
+
+template void add_water_forces<2>(ParticleSet<2>&, const NeighbourGrid<2>&, const WaterParams&, const MatArray<2>&);
+template void add_water_forces<3>(ParticleSet<3>&, const NeighbourGrid<3>&, const WaterParams&, const MatArray<3>&);
+
+}  // namespace sc

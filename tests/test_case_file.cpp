@@ -1,0 +1,87 @@
+// The case loader: a valid case loads; each malformed variant is rejected with an InputError that
+// names the file and the JSON path of the offending value.
+#include <boost/test/unit_test.hpp>
+#include <filesystem>
+#include <fstream>
+
+#include "io/case_file.hpp"
+
+using namespace sc;
+
+namespace {
+
+json valid_case() {
+  return json::parse(R"({
+    "name": "t", "dimension": 2,
+    "domain": {"min": [-1, -1], "max": [1, 1]},
+    "gravity": [0, -9.81],
+    "time": {"end": 0.1, "dt": 0.001},
+    "water": {"rest_density": 1000, "sound_speed": 10},
+    "blocks": [{"phase": "water", "min": [0, 0], "max": [0.1, 0.1]}],
+    "tank": {"min": [0, 0], "max": [0.5, 0.5], "sides": {"x-": "slip", "x+": "slip", "y-": "no_slip", "y+": "open"}},
+    "tiers": {"quick": {"spacings": [0.01]}, "full": {"spacings": [0.01, 0.005]}}
+  })");
+}
+
+std::string write_temp(const json& j) {
+  const auto path = std::filesystem::temp_directory_path() / "sandcastle_case_test.json";
+  std::ofstream(path) << j.dump();
+  return path.string();
+}
+
+/// Loads `j` and returns the JSON path of the error (or "no error").
+std::string error_path(const json& j) {
+  try {
+    load_case(write_temp(j));
+  } catch (const InputError& e) {
+    BOOST_TEST(e.file().find("sandcastle_case_test.json") != std::string::npos);
+    BOOST_TEST(!e.rule().empty());
+    return e.json_path();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(case_file)
+
+BOOST_AUTO_TEST_CASE(valid_case_loads) {
+  const CaseSpec c = load_case(write_temp(valid_case()));
+  BOOST_TEST(c.dimension == 2);
+  BOOST_TEST(c.tiers.at("full").spacings.size() == 2u);
+  BOOST_TEST(c.tank->sides.at("y-") == "no_slip");
+  BOOST_TEST(c.water.rest_density == 1000.0);
+}
+
+BOOST_AUTO_TEST_CASE(each_fault_names_its_json_path) {
+  struct Fault { std::string pointer; json value; std::string expected_path; };
+  const std::vector<Fault> faults = {
+      {"/water/rest_density", -1000.0, "/water/rest_density"},       // negative density
+      {"/water/rest_density", "1000", "/water/rest_density"},        // wrong type
+      {"/time/dt", 0.0, "/time/dt"},                                 // non-positive step
+      {"/tiers/quick/spacings/0", -0.01, "/tiers/quick/spacings"},   // negative spacing
+      {"/dimension", 4, "/dimension"},                               // out of range
+      {"/gravity", json::array({0.0}), "/gravity"},                  // wrong length
+      {"/water/viscosity_typo", 0.1, "/water/viscosity_typo"},       // unknown key
+      {"/tank/sides/y+", "lid", "/tank/sides/y+"},                   // not one of the choices
+      {"/blocks/0/phase", "lava", "/blocks/0/phase"},                // unknown phase
+      {"/blocks/0/max", json::array({2.0, 0.1}), "/blocks/0/max"},  // block outside the domain
+  };
+  for (const Fault& f : faults) {
+    json j = valid_case();
+    j[json::json_pointer(f.pointer)] = f.value;
+    BOOST_TEST(error_path(j) == f.expected_path, "fault at " << f.pointer);
+  }
+  json missing = valid_case();
+  missing["water"].erase("sound_speed");
+  BOOST_TEST(error_path(missing) == "/water/sound_speed");
+}
+
+BOOST_AUTO_TEST_CASE(missing_file_and_bad_json) {
+  BOOST_CHECK_THROW(load_case("/nonexistent/case.json"), InputError);
+  const auto path = std::filesystem::temp_directory_path() / "sandcastle_bad.json";
+  std::ofstream(path) << "{ \"name\": ";
+  BOOST_CHECK_THROW(load_case(path.string()), InputError);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

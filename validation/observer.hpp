@@ -1,0 +1,87 @@
+// Observers record what a validation case measures while it runs, and turn it into metrics
+// (compared with limits from the case file), time series and plot descriptions.
+//
+// A case file names its observer in "validation": {"observer": NAME, ...}; the observer reads the
+// rest of that object itself (with JsonObject, so unknown keys are errors). To add one, write
+// observers/<name>.cpp and list it in observers/registry.cpp.
+#pragma once
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/case_file.hpp"
+#include "simulator/simulator.hpp"
+
+namespace sc {
+
+/// A limit on a metric: value <= max and/or value >= min. No bound: informational only.
+struct MetricLimit {
+  std::optional<double> min, max;
+  bool accepts(double v) const { return std::isfinite(v) && (!min || v >= *min) && (!max || v <= *max); }
+  json to_json() const;
+};
+
+struct Metric {
+  double value = 0.0;
+  MetricLimit limit;
+  bool pass() const { return limit.accepts(value); }
+};
+
+struct Series {
+  std::string name, x_label, y_label;
+  std::vector<double> x, y;
+};
+
+struct Curve {
+  std::string series, label, style;  // style: "line" or "markers"
+};
+
+struct Plot {
+  std::string file, title, x_label, y_label;
+  std::vector<Curve> curves;
+};
+
+struct ObserverResult {
+  std::map<std::string, Metric> metrics;
+  std::vector<Series> series;
+  std::vector<Plot> plots;
+};
+
+/// Reads "metrics": {"name": {"min": a, "max": b}} of a validation block.
+std::map<std::string, MetricLimit> read_metric_limits(JsonObject& validation);
+
+/// Records metric `name` with its limit from `limits` (informational if the case sets none).
+void add_metric(ObserverResult& r, const std::map<std::string, MetricLimit>& limits, const std::string& name,
+                double value);
+
+/// A short human form of a number (printf %g).
+std::string format_number(double v);
+
+template <int D>
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  /// Called once before the first step and after every step.
+  virtual void sample(const Simulator<D>& sim) = 0;
+  /// Called at the end of the run; computes metrics against the reference.
+  virtual ObserverResult finish(const Simulator<D>& sim) = 0;
+};
+
+/// Context an observer is built with: the case, the spacing of this run, repository root.
+struct ObserverContext {
+  const CaseSpec& spec;
+  double spacing;
+  std::string source_dir;
+};
+
+/// The case's "validation" object with the keys the runner reads ("observer", "convergence")
+/// marked as read, for an observer to read its own keys from.
+JsonObject validation_block(const ObserverContext& ctx);
+
+/// Builds the observer the case names; throws InputError for unknown names or bad parameters.
+template <int D>
+std::unique_ptr<Observer<D>> make_observer(const ObserverContext& ctx);
+
+}  // namespace sc

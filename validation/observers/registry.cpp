@@ -1,0 +1,27 @@
+// The observers a case file can name in "validation": {"observer": NAME}. Add new ones here.
+#include "observer.hpp"
+
+namespace sc {
+
+template <int D> std::unique_ptr<Observer<D>> make_hydrostatic_observer(const ObserverContext&);
+template <int D> std::unique_ptr<Observer<D>> make_dam_break_observer(const ObserverContext&);
+
+JsonObject validation_block(const ObserverContext& ctx) {
+  JsonObject o(ctx.spec.validation, "/validation", ctx.spec.file);
+  o.mark_used("observer");
+  o.mark_used("convergence");
+  return o;
+}
+
+template <int D>
+std::unique_ptr<Observer<D>> make_observer(const ObserverContext& ctx) {
+  JsonObject o(ctx.spec.validation, "/validation", ctx.spec.file);
+  const std::string name = o.one_of("observer", {"hydrostatic", "dam_break"});
+  if (name == "hydrostatic") return make_hydrostatic_observer<D>(ctx);
+  return make_dam_break_observer<D>(ctx);
+}
+
+template std::unique_ptr<Observer<2>> make_observer<2>(const ObserverContext&);
+template std::unique_ptr<Observer<3>> make_observer<3>(const ObserverContext&);
+
+}  // namespace sc

@@ -1,0 +1,56 @@
+// Runs cases: a single simulation (`sandcastle run`) or the validation suite (`sandcastle
+// validate`), writing frames, series, report.json, plots and summary.md.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "io/case_file.hpp"
+#include "observer.hpp"
+
+namespace sc {
+
+/// Exit codes of the command (ARCHITECTURE.md "Contracts").
+enum ExitCode { kSuccess = 0, kCaseFailed = 1, kBadInput = 2, kBlowUp = 3 };
+
+/// One simulation of a case at one spacing.
+struct RunResult {
+  double spacing = 0.0;
+  std::string status = "pass";  ///< pass | fail | error
+  std::string message;          ///< diagnostic when status is error
+  int exit_code = kSuccess;
+  double wall_seconds = 0.0;
+  std::size_t particles = 0;
+  long steps = 0;
+  std::string checksum;
+  ObserverResult observed;
+};
+
+struct RunSettings {
+  std::string out_dir;          ///< where this run writes its files
+  double end_time = 0.0;        ///< 0 = the case's end time
+  bool write_frames = false;    ///< VTU frames at the case's frame interval (`run`)
+  std::string label;            ///< progress label
+};
+
+/// Simulates `spec` at spacing dx with its observer. Never throws for a blow-up (status error,
+/// exit code 3, last good state written to out_dir/last_good.vtu); throws InputError for bad input.
+RunResult run_simulation(const CaseSpec& spec, double dx, const RunSettings& settings);
+
+/// Writes series.json for a case (its series and plot descriptions).
+void write_series_file(const std::string& path, const std::string& case_name, const ObserverResult& r);
+
+struct ValidateOptions {
+  std::string tier = "quick";
+  std::vector<std::string> cases;  ///< names; empty = every case under cases/
+  std::string out_dir;
+  std::string cases_dir;           ///< default: <source>/cases
+  bool plots = true;
+};
+
+/// The validation suite; returns the exit code (0 only if every case passed).
+int validate(const ValidateOptions& options);
+
+/// Case files found under a folder (<dir>/<name>/case.json), sorted by name.
+std::vector<std::string> discover_cases(const std::string& cases_dir);
+
+}  // namespace sc
