@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "baseline.hpp"
+#include "compare.hpp"
 #include "io/atomic_file.hpp"
 #include "report.hpp"
 #include "runner.hpp"
@@ -32,6 +34,14 @@ int run_command(const std::string& case_file, const std::string& out_dir, const 
   return r.exit_code;
 }
 
+/// `sandcastle baseline`: runs the cases (unless --from names a finished run), then writes their
+/// baselines. A case that failed to run gets no baseline and makes the exit code non-zero.
+int bless_command(const sc::ValidateOptions& options, const std::string& from) {
+  const int run_code = from.empty() ? sc::validate(options) : sc::kSuccess;
+  const int bless_code = sc::write_baselines(from.empty() ? options.out_dir : from, sc::baselines_folder(options), options.cases);
+  return run_code == sc::kBadInput || run_code == sc::kBlowUp ? run_code : bless_code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -52,7 +62,29 @@ int main(int argc, char** argv) {
   val->add_option("--case", vopt.cases, "run only these cases (repeatable)");
   val->add_option("--out", vopt.out_dir, "output folder")->required();
   val->add_option("--cases-dir", vopt.cases_dir, "folder of cases (default: the repository's cases/)");
-  val->add_flag("!--no-plots", vopt.plots, "skip the PNG plots");
+  val->add_flag("!--no-plots", vopt.plots, "skip the PNG plots and report.html");
+  val->add_option("--baselines-dir", vopt.baselines_dir, "folder of baselines (default: reference/baselines)");
+
+  sc::ValidateOptions bopt;
+  bopt.out_dir = std::string(SANDCASTLE_SOURCE_DIR) + "/reports/baseline-run";
+  bopt.plots = false;
+  std::string bless_from;
+  CLI::App* bl = app.add_subcommand("baseline", "Bless baselines: write reference/baselines/<case>.json from a run");
+  bl->add_option("--tier", bopt.tier, "quick or full")->check(CLI::IsMember({"quick", "full"}));
+  bl->add_option("--case", bopt.cases, "only these cases (repeatable)");
+  bl->add_option("--out", bopt.out_dir, "folder of the run (default: reports/baseline-run)");
+  bl->add_option("--cases-dir", bopt.cases_dir, "folder of cases (default: the repository's cases/)");
+  bl->add_option("--baselines-dir", bopt.baselines_dir, "folder of baselines (default: reference/baselines)");
+  bl->add_option("--from", bless_from, "bless this finished validation run instead of running the cases")
+      ->check(CLI::ExistingDirectory);
+
+  std::string compare_a, compare_b, compare_out;
+  bool compare_plots = true;
+  CLI::App* cmp = app.add_subcommand("compare", "Diff two validation runs: compare.json, compare.md, compare.html");
+  cmp->add_option("run_a", compare_a, "first run folder (with report.json)")->required()->check(CLI::ExistingDirectory);
+  cmp->add_option("run_b", compare_b, "second run folder")->required()->check(CLI::ExistingDirectory);
+  cmp->add_option("--out", compare_out, "output folder")->required();
+  cmp->add_flag("!--no-plots", compare_plots, "skip the overlay plots and compare.html");
 
   try {
     app.parse(argc, argv);
@@ -62,6 +94,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (*run) return run_command(case_file, run_out, run_tier, spacing);
+    if (*bl) return bless_command(bopt, bless_from);
+    if (*cmp) return sc::compare_runs(compare_a, compare_b, compare_out, compare_plots);
     return sc::validate(vopt);
   } catch (const sc::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";

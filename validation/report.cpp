@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "baseline.hpp"
+
 namespace sc {
 
 namespace {
@@ -85,8 +87,8 @@ json report_document(const std::vector<json>& cases) {
     (s == "pass" ? passed : s == "fail" ? failed : errors)++;
   }
   return {{"schema_version", 1}, {"git_commit", git_commit()}, {"threads", omp_get_max_threads()},
-          {"compiler", SANDCASTLE_COMPILER}, {"cases", cases},
-          {"summary", {{"passed", passed}, {"failed", failed}, {"errors", errors}}}};
+          {"compiler", SANDCASTLE_COMPILER}, {"flags", SANDCASTLE_FLAGS}, {"cases", cases},
+          {"summary", {{"passed", passed}, {"failed", failed}, {"errors", errors}, {"baseline", baseline_counts(cases)}}}};
 }
 
 std::string summary_markdown(const json& report) {

@@ -44,6 +44,7 @@ struct ValidateOptions {
   std::vector<std::string> cases;  ///< names; empty = every case under cases/
   std::string out_dir;
   std::string cases_dir;           ///< default: <source>/cases
+  std::string baselines_dir;       ///< default: <source>/reference/baselines
   bool plots = true;
 };
 

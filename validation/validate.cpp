@@ -4,8 +4,10 @@
 #include <filesystem>
 #include <iostream>
 
+#include "baseline.hpp"
 #include "io/atomic_file.hpp"
 #include "report.hpp"
+#include "report_scripts.hpp"
 #include "runner.hpp"
 
 namespace fs = std::filesystem;
@@ -43,6 +45,7 @@ json validate_case(const CaseSpec& spec, const ValidateOptions& opt, int& exit_c
   for (const Plot& p : plotted.plots) plots.push_back(spec.name + "/" + p.file);
   write_series_file(case_dir + "/series.json", spec.name, plotted);
   json entry = case_entry(spec, opt.tier, runs, spec.name + "/series.json", plots);
+  add_baseline_comparison(spec, opt, entry, exit_code);
   const std::string status = entry.at("status");
   if (status == "error") exit_code = std::max(exit_code, static_cast<int>(runs.back().exit_code));
   else if (status == "fail" && exit_code == kSuccess) exit_code = kCaseFailed;
@@ -86,8 +89,11 @@ int validate(const ValidateOptions& opt) {
   }
   const json report = report_document(entries);
   write_file_atomic(opt.out_dir + "/report.json", report.dump(2) + "\n");
-  if (opt.plots) run_plot_script(opt.out_dir);
-  const std::string summary = summary_markdown(report);
+  if (opt.plots) {
+    run_plot_script(opt.out_dir);
+    run_report_script("html_report.py", {opt.out_dir});  // report.html, with the plots embedded
+  }
+  const std::string summary = summary_markdown(report) + baseline_markdown(report);
   write_file_atomic(opt.out_dir + "/summary.md", summary);
   std::cout << summary;
   return exit_code;

@@ -108,6 +108,10 @@ CaseSpec load_case(const std::string& path) {
     b.finish();
     c.blocks.push_back(block);
   }
+  if (o.has("meshes")) {
+    if (c.dimension != 3) o.fail("meshes", "meshes need \"dimension\": 3");
+    for (JsonObject m : o.objects("meshes")) c.meshes.push_back(read_mesh(m, path, {"water"}));
+  }
   if (o.has("tank")) read_tank(o.object("tank"), c);
   c.validation = o.has("validation") ? o.raw("validation") : json::object();
   read_tiers(o.object("tiers"), c);

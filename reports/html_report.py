@@ -1,0 +1,139 @@
+#!/usr/bin/env python3
+"""Writes RUN_DIR/report.html: a self-contained page (plots embedded as data URIs) of a
+validation run, readable offline: the pass/fail table, every metric with its limit, the
+comparison with the baseline, and the plots.
+
+Usage: html_report.py RUN_DIR     (reads RUN_DIR/report.json, format: reports/README.md)
+The helpers (page, table, image) are shared with compare_report.py.
+"""
+import base64
+import html
+import json
+import os
+import sys
+
+STYLE = """
+body { font-family: sans-serif; margin: 2em; max-width: 1200px; color: #222; }
+table { border-collapse: collapse; margin: 0.5em 0 1em 0; }
+th, td { border: 1px solid #ccc; padding: 3px 8px; text-align: left; font-size: 0.9em; }
+th { background: #f0f0f0; }
+.pass, .identical { background: #dff0d8; }
+.fail, .error, .regressed { background: #f2dede; font-weight: bold; }
+.changed, .missing, .not_compared { background: #fcf8e3; }
+img { max-width: 48%; margin: 4px; border: 1px solid #ddd; }
+code { font-size: 0.9em; }
+"""
+
+
+def esc(value):
+    return html.escape(str(value))
+
+
+def number(value):
+    """A number as text: %.4g, n/a for null."""
+    if value is None:
+        return "n/a"
+    if isinstance(value, float):
+        return f"{value:.4g}"
+    return esc(value)
+
+
+def table(headers, rows):
+    """rows: lists of cells; a cell is text or a (text, css class) pair."""
+    out = ["<table><tr>" + "".join(f"<th>{esc(h)}</th>" for h in headers) + "</tr>"]
+    for row in rows:
+        cells = []
+        for cell in row:
+            text, css = cell if isinstance(cell, tuple) else (cell, "")
+            cells.append(f'<td class="{css}">{text}</td>' if css else f"<td>{text}</td>")
+        out.append("<tr>" + "".join(cells) + "</tr>")
+    return "\n".join(out) + "</table>"
+
+
+def image(path):
+    """An <img> with the PNG embedded, or a note when the file is missing."""
+    if not os.path.exists(path):
+        return f"<p>missing plot: <code>{esc(path)}</code></p>"
+    with open(path, "rb") as f:
+        data = base64.b64encode(f.read()).decode("ascii")
+    return f'<img alt="{esc(os.path.basename(path))}" src="data:image/png;base64,{data}">'
+
+
+def page(title, body):
+    return (f"<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{esc(title)}</title>"
+            f"<style>{STYLE}</style></head><body>\n<h1>{esc(title)}</h1>\n{body}\n</body></html>\n")
+
+
+def header(report):
+    s = report["summary"]
+    counts = s.get("baseline", {})
+    baseline = ", ".join(f"{n} {k}" for k, n in counts.items() if n)
+    return (f"<p>commit <code>{esc(report['git_commit'])}</code>, {esc(report['threads'])} threads, "
+            f"{esc(report['compiler'])}, flags <code>{esc(report.get('flags', ''))}</code></p>"
+            f"<p><b>{s['passed']} passed, {s['failed']} failed, {s['errors']} errors</b>"
+            + (f"; baselines: {esc(baseline)}" if baseline else "") + "</p>")
+
+
+def overview(cases):
+    rows = []
+    for c in cases:
+        b = c.get("baseline", {}).get("status", "n/a")
+        rows.append([f'<a href="#{esc(c["name"])}">{esc(c["name"])}</a>', esc(c["tier"]), (esc(c["status"]), c["status"]),
+                     (esc(b), b), number(c["particles"]), number(c["steps"]), number(c["wall_seconds"])])
+    return table(["case", "tier", "physics", "baseline", "particles", "steps", "wall [s]"], rows)
+
+
+def metrics_table(metrics):
+    rows = [[esc(name), number(m["value"]), esc(json.dumps(m["limit"])),
+             ("pass", "pass") if m["pass"] else ("FAIL", "fail")] for name, m in metrics.items()]
+    return table(["metric", "value", "limit", "gate"], rows)
+
+
+def yes_no(flag):
+    return "yes" if flag else "no"
+
+
+def verdict(item):
+    return ("ok", "pass") if item.get("pass", True) else ("REGRESSED", "regressed")
+
+
+def baseline_section(b):
+    status = b["status"]
+    out = f'<p>baseline: <span class="{status}">{esc(status)}</span>'
+    if "reason" in b:
+        return out + f" ({esc(b['reason'])})</p>"
+    prov = b["provenance"]
+    out += (f" (blessed {esc(prov['date'])} at commit <code>{esc(prov['commit'][:12])}</code>, checksum "
+            f"<code>{esc(b['state_checksum'])}</code>, same build: {yes_no(b['same_build'])}, "
+            f"parameters changed: {yes_no(b['parameters_changed'])})</p>")
+    rows = [[esc(n), number(s.get("relative_rms")), number(s.get("max_difference")), esc(json.dumps(s.get("limit", {}))),
+             esc(s.get("note", "")), verdict(s)] for n, s in b["series"].items()]
+    out += table(["series", "relative RMS", "max difference", "limit", "note", "verdict"], rows)
+    rows = [[esc(n), number(m["baseline"]), number(m["value"]), number(m["delta"]), number(m["relative"]),
+             esc(json.dumps(m["limit"])), verdict(m)] for n, m in b["metrics"].items()]
+    return out + table(["metric", "baseline", "this run", "delta", "relative", "limit", "verdict"], rows)
+
+
+def case_section(run_dir, c):
+    out = f'<h2 id="{esc(c["name"])}">{esc(c["name"])} <span class="{c["status"]}">{esc(c["status"])}</span></h2>'
+    if "message" in c:
+        out += f"<p><code>{esc(c['message'])}</code></p>"
+    out += metrics_table(c["metrics"])
+    if "baseline" in c:
+        out += baseline_section(c["baseline"])
+    return out + "<div>" + "".join(image(os.path.join(run_dir, p)) for p in c["plots"]) + "</div>"
+
+
+def main():
+    run_dir = sys.argv[1]
+    with open(os.path.join(run_dir, "report.json")) as f:
+        report = json.load(f)
+    body = header(report) + overview(report["cases"]) + "".join(case_section(run_dir, c) for c in report["cases"])
+    path = os.path.join(run_dir, "report.html")
+    with open(path + ".tmp", "w") as f:
+        f.write(page("sandcastle validation", body))
+    os.replace(path + ".tmp", path)
+
+
+if __name__ == "__main__":
+    main()

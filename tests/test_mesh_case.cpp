@@ -1,0 +1,98 @@
+// The "meshes" list of a case file: a mesh fills the scene with particles, and each fault is an
+// InputError naming the case file and the mesh's JSON path.
+#include <boost/test/unit_test.hpp>
+#include <filesystem>
+#include <fstream>
+
+#include "io/case_file.hpp"
+#include "scene/scene_builder.hpp"
+
+using namespace sc;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path folder = fs::temp_directory_path() / "sandcastle_mesh_case";
+
+/// A 1 x 2 x 1 box (file units), y up, as OBJ in the test folder.
+void write_box_obj() {
+  fs::create_directories(folder);
+  std::ofstream out(folder / "box.obj");
+  for (int k = 0; k < 8; ++k) out << "v " << (k & 1) << " " << 2 * ((k >> 1) & 1) << " " << ((k >> 2) & 1) << "\n";
+  out << "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\nf 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
+}
+
+json box_case() {
+  return json::parse(R"({
+    "name": "m", "dimension": 3,
+    "domain": {"min": [-1, -1, -1], "max": [2, 2, 2]},
+    "gravity": [0, 0, -9.81],
+    "time": {"end": 0.1},
+    "water": {"rest_density": 1000, "sound_speed": 10},
+    "blocks": [],
+    "meshes": [{"file": "box.obj", "phase": "water", "up_axis": "y", "size": 0.4, "min_corner": [0.1, 0.1, 0.1]}],
+    "tiers": {"quick": {"spacings": [0.05]}, "full": {"spacings": [0.05]}}
+  })");
+}
+
+std::string write_case(const json& j) {
+  write_box_obj();
+  std::ofstream(folder / "case.json") << j.dump();
+  return (folder / "case.json").string();
+}
+
+/// Loads `j` and builds its particles; returns the JSON path of the InputError, or "no error".
+std::string error_path(const json& j) {
+  try {
+    build_scene<3>(load_case(write_case(j)), 0.05);
+  } catch (const InputError& e) {
+    BOOST_TEST(e.file().find("case.json") != std::string::npos);
+    return e.json_path();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(mesh_case)
+
+BOOST_AUTO_TEST_CASE(mesh_fills_its_placed_box) {
+  const CaseSpec c = load_case(write_case(box_case()));
+  BOOST_TEST(c.meshes.size() == 1u);
+  const ParticleSet<3> ps = build_scene<3>(c, 0.05);
+  // size 0.4 scales the 2-unit height to 0.4 m: a 0.2 x 0.2 x 0.4 m box (y up becomes z up).
+  BOOST_TEST(ps.size() == 4u * 4u * 8u);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    BOOST_TEST_REQUIRE((ps.phase_of(i) == Phase::Water));
+    BOOST_TEST_REQUIRE(ps.x[i].z() > 0.1);
+    BOOST_TEST_REQUIRE(ps.x[i].z() < 0.5);
+    BOOST_TEST_REQUIRE(ps.x[i].x() < 0.3);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(each_mesh_fault_names_its_json_path) {
+  json missing = box_case(), both = box_case(), outside = box_case(), sand = box_case(), flat = box_case();
+  missing["meshes"][0]["file"] = "no_such.obj";
+  both["meshes"][0]["scale"] = 2.0;
+  outside["meshes"][0]["min_corner"] = json::array({1.9, 0.0, 0.0});
+  sand["meshes"][0]["phase"] = "sand";  // the case has no "sand" section
+  flat["dimension"] = 2;
+  flat["domain"] = json::parse(R"({"min": [-1, -1], "max": [2, 2]})");
+  flat["gravity"] = json::array({0.0, -9.81});
+  BOOST_TEST(error_path(box_case()) == "no error");
+  BOOST_TEST(error_path(missing) == "/meshes/0/file");
+  BOOST_TEST(error_path(both) == "/meshes/0/scale");
+  BOOST_TEST(error_path(outside) == "/meshes/0");
+  BOOST_TEST(error_path(sand) == "/meshes/0/phase");
+  BOOST_TEST(error_path(flat) == "/meshes");
+}
+
+BOOST_AUTO_TEST_CASE(unreadable_mesh_is_an_input_error_at_its_path) {
+  json j = box_case();
+  j["meshes"][0]["file"] = "empty.obj";
+  fs::create_directories(folder);
+  std::ofstream(folder / "empty.obj") << "# no triangles\n";
+  BOOST_TEST(error_path(j) == "/meshes/0/file");
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,45 @@
+// Regression baselines (reference/baselines/<case>.json): writing them from a finished run
+// (`sandcastle baseline`, an explicit act) and comparing a validation run with them
+// (`sandcastle validate`, report.json "baseline" per case). Format: reports/README.md.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "io/case_file.hpp"
+#include "io/json_reader.hpp"
+#include "runner.hpp"
+
+namespace sc {
+
+/// The folder baselines live in: `options.baselines_dir`, or <source>/reference/baselines.
+std::string baselines_folder(const ValidateOptions& options);
+
+/// The build that made this binary: {"compiler", "flags"}.
+json build_identity();
+
+/// The baseline document of a report.json case entry (series from run_dir), with provenance taken
+/// from the report header, the entry and `date`.
+json baseline_document(const json& report, const json& entry, const std::string& run_dir, const std::string& date);
+
+/// Compares the case entry of a validation run (its series already in run_dir) with the case's
+/// baseline in `baselines_dir`: the "baseline" object of report.json. Throws InputError when the
+/// case's "regression" limits name a series or metric the run does not have.
+json compare_with_baseline(const CaseSpec& spec, const json& entry, const std::string& run_dir,
+                           const std::string& baselines_dir);
+
+/// Adds "parameters_hash" and "baseline" to a validation entry; a regression raises the exit code
+/// to kCaseFailed like a failed physics gate.
+void add_baseline_comparison(const CaseSpec& spec, const ValidateOptions& options, json& entry, int& exit_code);
+
+/// Writes baselines_dir/<case>.json for the cases of run_dir/report.json (only `names` if not
+/// empty). Cases that stopped with an error get none. Returns the exit code: 0, or 2 when a named
+/// case is not in the run or a case could not be blessed.
+int write_baselines(const std::string& run_dir, const std::string& baselines_dir, const std::vector<std::string>& names);
+
+/// The "Baselines" section of summary.md.
+std::string baseline_markdown(const json& report);
+
+/// summary.baseline of report.json: how many cases are identical, changed, regressed, missing.
+json baseline_counts(const std::vector<json>& cases);
+
+}  // namespace sc
