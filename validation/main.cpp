@@ -1,6 +1,7 @@
 // The `sandcastle` command: run one case, or validate the suite. Exit codes: 0 success, 1 a case
 // failed its gate, 2 bad input (file, JSON path and rule on stderr), 3 the simulation blew up.
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <iostream>
 
 #include "baseline.hpp"
@@ -11,7 +12,16 @@
 
 namespace {
 
-int run_command(const std::string& case_file, const std::string& out_dir, const std::string& tier, double spacing) {
+/// An output folder: absent (it will be created) or an existing folder, not a file.
+const CLI::Validator output_folder(
+    [](std::string& path) {
+      return std::filesystem::exists(path) && !std::filesystem::is_directory(path)
+                 ? "output folder " + path + " exists and is not a folder" : std::string();
+    },
+    "FOLDER");
+
+int run_command(const std::string& case_file, const std::string& out_dir, const std::string& tier, double spacing,
+                long checkpoint_every, const std::string& resume_from) {
   const sc::CaseSpec spec = sc::load_case(case_file);
   const double dx = spacing > 0.0 ? spacing : spec.tiers.at(tier).spacings.back();
   sc::RunSettings settings;
@@ -19,6 +29,8 @@ int run_command(const std::string& case_file, const std::string& out_dir, const 
   settings.write_frames = true;
   settings.end_time = spacing > 0.0 ? 0.0 : spec.tiers.at(tier).end_time;
   settings.label = spec.name;
+  settings.checkpoint_every = checkpoint_every;
+  settings.resume_from = resume_from;
   const sc::RunResult r = sc::run_simulation(spec, dx, settings);
   if (r.status == "error") {
     std::cerr << "error: " << r.message << "\n";
@@ -52,15 +64,21 @@ int main(int argc, char** argv) {
   double spacing = 0.0;
   CLI::App* run = app.add_subcommand("run", "Simulate one case, writing VTU frames (ParaView) and series");
   run->add_option("case", case_file, "case file (cases/<name>/case.json)")->required()->check(CLI::ExistingFile);
-  run->add_option("--out", run_out, "output folder")->required();
+  run->add_option("--out", run_out, "output folder")->required()->check(output_folder);
   run->add_option("--tier", run_tier, "tier whose finest spacing is used")->check(CLI::IsMember({"quick", "full"}));
   run->add_option("--spacing", spacing, "particle spacing [m], overriding the tier")->check(CLI::PositiveNumber);
+  long checkpoint_every = 0;
+  std::string resume_from;
+  run->add_option("--checkpoint-every", checkpoint_every, "write DIR/checkpoint_<step>.ckpt every N steps")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--resume", resume_from, "continue from this checkpoint (same case and spacing)")
+      ->check(CLI::ExistingFile);
 
   sc::ValidateOptions vopt;
   CLI::App* val = app.add_subcommand("validate", "Run the validation cases and write report.json, plots, summary.md");
   val->add_option("--tier", vopt.tier, "quick (CI) or full (users)")->check(CLI::IsMember({"quick", "full"}));
   val->add_option("--case", vopt.cases, "run only these cases (repeatable)");
-  val->add_option("--out", vopt.out_dir, "output folder")->required();
+  val->add_option("--out", vopt.out_dir, "output folder")->required()->check(output_folder);
   val->add_option("--cases-dir", vopt.cases_dir, "folder of cases (default: the repository's cases/)");
   val->add_flag("!--no-plots", vopt.plots, "skip the PNG plots and report.html");
   val->add_option("--baselines-dir", vopt.baselines_dir, "folder of baselines (default: reference/baselines)");
@@ -93,7 +111,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : sc::kBadInput;
   }
   try {
-    if (*run) return run_command(case_file, run_out, run_tier, spacing);
+    if (*run) return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from);
     if (*bl) return bless_command(bopt, bless_from);
     if (*cmp) return sc::compare_runs(compare_a, compare_b, compare_out, compare_plots);
     return sc::validate(vopt);

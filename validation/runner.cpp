@@ -11,6 +11,7 @@
 #include "io/vtu_writer.hpp"
 #include "progress.hpp"
 #include "report.hpp"
+#include "restart.hpp"
 #include "scene/scene_builder.hpp"
 
 namespace fs = std::filesystem;
@@ -23,15 +24,16 @@ template <int D>
 RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& settings) {
   const ObserverContext ctx{spec, dx, SANDCASTLE_SOURCE_DIR};
   std::unique_ptr<Observer<D>> observer = make_observer<D>(ctx);  // checks the validation block first
-  Simulator<D> sim(build_scene<D>(spec, dx), SimulationParams::from_case(spec, dx));
+  FrameLog log;
+  Simulator<D> sim = start_simulator<D>(spec, dx, settings.resume_from, log);
   RunResult result;
   result.spacing = dx;
   result.particles = sim.particles().size();
   const double end = settings.end_time > 0.0 ? settings.end_time : spec.end_time;
   fs::create_directories(settings.out_dir);
 
-  std::vector<std::pair<double, std::string>> frames;
-  double next_frame = 0.0;
+  auto& frames = log.frames;
+  double& next_frame = log.next_frame;
   auto write_frame = [&]() {
     auto t = sim.timers().time(Stage::Output);
     char name[32];
@@ -45,7 +47,7 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   Progress progress(settings.label, end);
   observer->sample(sim);
   try {
-    if (settings.write_frames) write_frame();
+    if (settings.write_frames && frames.empty()) write_frame();
     while (sim.time() < end - 1e-12) {
       sim.step();
       observer->sample(sim);
@@ -53,6 +55,8 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
         next_frame += spec.frame_interval;
         write_frame();
       }
+      if (settings.checkpoint_every > 0 && sim.steps() % settings.checkpoint_every == 0)
+        write_run_checkpoint(settings.out_dir + "/" + checkpoint_name(sim.steps()), sim, spec, dx, log);
       progress.update(sim.time(), sim.steps());
     }
     if (settings.write_frames && (frames.empty() || frames.back().first < sim.time())) write_frame();
@@ -60,9 +64,11 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   } catch (const BlowUpError& e) {
     progress.done(sim.time(), sim.steps());
     write_file_atomic(settings.out_dir + "/last_good.vtu", vtu_document(sim.particles()));
+    write_run_checkpoint(settings.out_dir + "/last_good.ckpt", sim, spec, dx, log);
     result.status = "error";
     result.exit_code = kBlowUp;
-    result.message = std::string(e.what()) + "; last good state in " + settings.out_dir + "/last_good.vtu";
+    result.message = std::string(e.what()) + "; last good state in " + settings.out_dir + "/last_good.vtu and " +
+                     settings.out_dir + "/last_good.ckpt";
   }
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.steps = sim.steps();

@@ -30,10 +30,13 @@ struct RunSettings {
   double end_time = 0.0;        ///< 0 = the case's end time
   bool write_frames = false;    ///< VTU frames at the case's frame interval (`run`)
   std::string label;            ///< progress label
+  long checkpoint_every = 0;    ///< write checkpoint_<step>.ckpt every N steps (0: none)
+  std::string resume_from;      ///< checkpoint to continue from (empty: start at t = 0)
 };
 
 /// Simulates `spec` at spacing dx with its observer. Never throws for a blow-up (status error,
-/// exit code 3, last good state written to out_dir/last_good.vtu); throws InputError for bad input.
+/// exit code 3, last good state written to out_dir/last_good.vtu and last_good.ckpt); throws
+/// InputError for bad input (before anything is written).
 RunResult run_simulation(const CaseSpec& spec, double dx, const RunSettings& settings);
 
 /// Writes series.json for a case (its series and plot descriptions).

@@ -76,6 +76,22 @@ void read_tiers(JsonObject o, CaseSpec& c) {
   o.finish();
 }
 
+/// A block must not reach into the wall layers of a closed tank side: it must lie within the
+/// tank's box on every side that is not open.
+void check_blocks_inside_tank(const CaseSpec& c) {
+  const char* axes = "xyz";
+  for (std::size_t k = 0; k < c.blocks.size(); ++k)
+    for (int d = 0; d < c.dimension; ++d) {
+      const std::string axis(1, axes[d]);
+      const BlockSpec& b = c.blocks[k];
+      const std::string where = "/blocks/" + std::to_string(k);
+      if (c.tank->sides.at(axis + "-") != "open" && b.min[d] < c.tank->min[d])
+        throw InputError(c.file, where + "/min", "block overlaps the tank wall " + axis + "- (closed side): it must lie inside the tank");
+      if (c.tank->sides.at(axis + "+") != "open" && b.max[d] > c.tank->max[d])
+        throw InputError(c.file, where + "/max", "block overlaps the tank wall " + axis + "+ (closed side): it must lie inside the tank");
+    }
+}
+
 }  // namespace
 
 CaseSpec load_case(const std::string& path) {
@@ -112,7 +128,10 @@ CaseSpec load_case(const std::string& path) {
     if (c.dimension != 3) o.fail("meshes", "meshes need \"dimension\": 3");
     for (JsonObject m : o.objects("meshes")) c.meshes.push_back(read_mesh(m, path, {"water"}));
   }
-  if (o.has("tank")) read_tank(o.object("tank"), c);
+  if (o.has("tank")) {
+    read_tank(o.object("tank"), c);
+    check_blocks_inside_tank(c);
+  }
   c.validation = o.has("validation") ? o.raw("validation") : json::object();
   read_tiers(o.object("tiers"), c);
   o.finish();

@@ -13,7 +13,7 @@ json read_json_file(const std::string& path) {
   buf << in.rdbuf();
   try {
     return json::parse(buf.str());
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e999
     throw InputError(path, "", std::string("not valid JSON: ") + e.what());
   }
 }

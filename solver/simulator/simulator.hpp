@@ -42,6 +42,9 @@ class Simulator {
   double time() const { return time_; }
   long steps() const { return steps_; }
   void set_clock(double time, long steps) { time_ = time; steps_ = steps; }
+  /// The previous step size: carried state a checkpoint must hold to resume bitwise.
+  double last_dt() const { return last_dt_; }
+  void set_last_dt(double dt) { last_dt_ = dt; }
   StageTimers& timers() { return timers_; }
 
  private:
