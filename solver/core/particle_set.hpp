@@ -34,12 +34,17 @@ class ParticleSet {
   std::vector<std::uint8_t> phase;   ///< Phase as an integer (VTU-friendly)
   std::vector<std::uint8_t> rough;   ///< boundary particles: 1 = no-slip (rough) wall, 0 = slip
   std::vector<std::int64_t> id;      ///< stable identity, never reused within a run
+  // --- sand (solver/sand/) ----------------------------------------------------------------
+  std::vector<std::uint8_t> rigid;   ///< sand: 1 = does not yield (eq 10), 0 = flowing
+  std::vector<std::int32_t> cluster; ///< sand: rigid cluster number + 1 of this step, 0 = none
+  std::vector<double> strain_rate;   ///< sand: |D|_F [1/s] (eq 9)
 
   template <class F>
   void visit_fields(F&& f) {
     f("position", x); f("velocity", v); f("force", force);
     f("mass", m); f("support_radius", h); f("density", rho); f("rest_density", rho0);
     f("pressure", p); f("phase", phase); f("rough", rough); f("id", id);
+    f("rigid", rigid); f("cluster", cluster); f("strain_rate", strain_rate);
   }
   template <class F>
   void visit_fields(F&& f) const { const_cast<ParticleSet*>(this)->visit_fields(f); }

@@ -38,6 +38,21 @@ void read_water(JsonObject o, CaseSpec& c) {
   o.finish();
 }
 
+void read_sand(JsonObject o, CaseSpec& c) {
+  SandParams& s = c.sand;
+  s.rest_density = o.positive("rest_density");
+  s.friction_angle_deg = o.in_range("friction_angle", 0.0, 90.0, true);
+  s.cohesion = o.non_negative("cohesion", 0.0);
+  s.viscosity = o.non_negative("viscosity", 0.0);
+  s.wall_friction = o.has("wall_friction") ? o.non_negative("wall_friction", 0.0) : -1.0;
+  s.contact_damping = o.non_negative("contact_damping", 0.5);
+  s.rigid_clusters = o.boolean("rigid_clusters", true);
+  s.rigid_length = o.one_of("rigid_stress_length", {"spacing", "support"}, "spacing") == "spacing"
+                       ? RigidStressLength::Spacing : RigidStressLength::Support;
+  o.finish();
+  c.has_sand = true;
+}
+
 void read_tank(JsonObject o, CaseSpec& c) {
   TankSpec t;
   t.min = o.numbers("min", c.dimension);
@@ -112,9 +127,11 @@ CaseSpec load_case(const std::string& path) {
   c.support_ratio = o.in_range("support_ratio", 1.0, 4.0, false, 2.0);
   c.density_window = o.non_negative("density_window", 0.0);
   read_water(o.object("water"), c);
+  if (o.has("sand")) read_sand(o.object("sand"), c);
   for (JsonObject b : o.objects("blocks")) {
     BlockSpec block;
-    block.phase = b.one_of("phase", {"water"});
+    block.phase = b.one_of("phase", {"water", "sand"});
+    if (block.phase == "sand" && !c.has_sand) b.fail("phase", "a sand block needs the \"sand\" section");
     block.min = b.numbers("min", c.dimension);
     block.max = b.numbers("max", c.dimension);
     check_box(b, block.min, block.max);

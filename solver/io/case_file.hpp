@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "io/json_reader.hpp"
+#include "sand/sand_params.hpp"
 #include "io/mesh_spec.hpp"
 #include "sph/equation_of_state.hpp"
 #include "water/water_forces.hpp"
@@ -15,7 +16,7 @@ namespace sc {
 
 /// A rectangular block of particles on a lattice at the case spacing.
 struct BlockSpec {
-  std::string phase;             ///< "water" (later: "sand")
+  std::string phase;             ///< "water" or "sand"
   std::vector<double> min, max;  ///< corners [m]
 };
 
@@ -46,6 +47,8 @@ struct CaseSpec {
   double density_window = 0.0;  ///< blow-up guard: |ρ/ρ0 − 1| above this stops the run; 0 = off
   EquationOfState eos;
   WaterParams water;
+  SandParams sand;              ///< the "sand" section (needed by blocks of phase "sand")
+  bool has_sand = false;
   std::vector<BlockSpec> blocks;
   std::vector<MeshSpec> meshes;  ///< closed OBJ meshes filled with particles (3-D only)
   std::optional<TankSpec> tank;

@@ -88,9 +88,13 @@ ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
   const double h = spec.support_ratio * dx;
   const double rho0 = spec.water.rest_density;
   const double mass = lattice_mass<D>(rho0, dx, h, spec.water.density_kernel);
-  for (const BlockSpec& block : spec.blocks)
+  const double sand_rho0 = spec.sand.rest_density;
+  const double sand_mass = lattice_mass<D>(sand_rho0, dx, h, spec.water.density_kernel);
+  for (const BlockSpec& block : spec.blocks) {
+    const bool sand = block.phase == "sand";
     for (const Vec<D>& p : lattice_points<D>(to_vec<D>(block.min), to_vec<D>(block.max), dx))
-      add_particle(ps, p, Phase::Water, mass, h, rho0, false);
+      add_particle(ps, p, sand ? Phase::Sand : Phase::Water, sand ? sand_mass : mass, h, sand ? sand_rho0 : rho0, false);
+  }
   if constexpr (D == 3)
     for (const MeshSpec& m : spec.meshes)
       for (const Vec<3>& p : mesh_particles(spec, m, dx)) add_particle(ps, p, Phase::Water, mass, h, rho0, false);

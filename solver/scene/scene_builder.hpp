@@ -1,4 +1,4 @@
-// Builds the particles of a case at a given spacing: lattice blocks of water and the tank walls.
+// Builds the particles of a case at a given spacing: lattice blocks of water or sand and the tank walls.
 #pragma once
 #include "core/particle_set.hpp"
 #include "io/case_file.hpp"

@@ -19,6 +19,7 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
   p.relax_rate = spec.relax_rate;
   p.eos = spec.eos;
   p.water = spec.water;
+  p.sand = spec.sand;
   const double volume = std::pow(spacing, spec.dimension);
   p.water.reference_mass = spec.water.rest_density * volume;
   p.gravity = spec.gravity;
@@ -33,6 +34,8 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params)
   g_ = to_vec<D>(params_.gravity);
   lo_ = to_vec<D>(params_.domain_min);
   hi_ = to_vec<D>(params_.domain_max);
+  for (std::size_t i = 0; i < ps_.size(); ++i) has_sand_ = has_sand_ || ps_.phase_of(i) == Phase::Sand;
+  last_dt_ = params_.dt_max;
   check_state();
 }
 
@@ -79,7 +82,15 @@ void Simulator<D>::compute_forces() {
     for (std::int64_t i = 0; i < n; ++i) ps_.force[i] = ps_.moves(i) ? Vec<D>(ps_.m[i] * g_) : Vec<D>::Zero();
     if (params_.water.gradient_correction) compute_gradient_corrections(ps_, nb_, correction_);
     add_water_forces(ps_, nb_, params_.water, correction_);
+    if (has_sand_) compute_sand_forces();
   }
+}
+
+template <int D>
+void Simulator<D>::compute_sand_forces() {
+  update_sand_state(ps_, nb_, params_.sand, g_.norm(), last_dt_, sand_stress_);
+  add_sand_forces(ps_, nb_, params_.sand, params_.water, params_.eos.sound_speed, correction_, sand_stress_, wall_force_);
+  add_water_sand_contact(ps_, nb_, params_.sand, params_.eos.sound_speed);
 }
 
 template <int D>
@@ -89,12 +100,18 @@ void Simulator<D>::integrate(double dt) {
   // Initial relaxation (a numerical device for cases that start from a lattice, not physics):
   // before relax_until, velocities decay at relax_rate so the start-up waves die out.
   const double damping = time_ < params_.relax_until ? std::exp(-params_.relax_rate * dt) : 1.0;
+  std::vector<ClusterMotion<D>> motions;
+  if (has_sand_) {
+    auto tc = timers_.time(Stage::Clusters);
+    motions = cluster_motions(ps_, clusters_, dt);  // eqs 13-18, from the velocities before the step
+  }
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
-    if (!ps_.moves(i)) continue;
+    if (!ps_.moves(i) || (has_sand_ && ps_.cluster[i] != 0)) continue;
     ps_.v[i] = damping * (ps_.v[i] + dt * acceleration<D>(ps_.force[i], ps_.m[i]));  // symplectic Euler
     ps_.x[i] += dt * ps_.v[i];
   }
+  if (has_sand_) move_clusters(ps_, clusters_, motions, dt, damping);
 }
 
 template <int D>
@@ -102,7 +119,13 @@ double Simulator<D>::step() {
   last_good_ = ps_;
   compute_forces();
   const double dt = stable_dt();
+  if (has_sand_) {
+    add_wall_friction(ps_, wall_force_, params_.sand.wall_mu(), dt);
+    auto t = timers_.time(Stage::Clusters);
+    clusters_ = params_.sand.rigid_clusters ? find_clusters(ps_, nb_) : Clusters{};
+  }
   integrate(dt);
+  last_dt_ = dt;
   ps_.compact();
   try {
     check_state();

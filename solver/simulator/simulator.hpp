@@ -6,6 +6,8 @@
 #include "core/stage_timers.hpp"
 #include "io/case_file.hpp"
 #include "neighbours/neighbour_grid.hpp"
+#include "sand/clusters.hpp"
+#include "sand/sand_forces.hpp"
 #include "sph/gradient_correction.hpp"
 
 namespace sc {
@@ -18,6 +20,7 @@ struct SimulationParams {
   double relax_rate = 0.0;    ///< [1/s] damping rate of the relaxation (v *= exp(−rate dt))
   EquationOfState eos;
   WaterParams water;
+  SandParams sand;
   std::vector<double> gravity, domain_min, domain_max;
 
   static SimulationParams from_case(const CaseSpec& spec, double spacing);
@@ -49,6 +52,8 @@ class Simulator {
 
  private:
   void compute_forces();
+  /// Sand (thesis Fig. 3.3): yield state and frictional stress, then the sand forces.
+  void compute_sand_forces();
   void integrate(double dt);
   /// Throws BlowUpError naming the first offending particle (lowest index).
   void check_state() const;
@@ -56,6 +61,11 @@ class Simulator {
   ParticleSet<D> ps_, last_good_;
   NeighbourGrid<D> nb_;
   MatArray<D> correction_;  // kernel-gradient corrections of the current step
+  MatArray<D> sand_stress_;   // tension-positive frictional stress −σ_f of each sand particle (eq 8)
+  VecArrayOf<D> wall_force_;  // push of rough walls on each sand particle (normal of the wall friction)
+  Clusters clusters_;         // rigid sand clusters of the current step
+  bool has_sand_ = false;
+  double last_dt_ = 0.0;      // step size of the previous step (the rigid stress, eq 12a, needs one)
   SimulationParams params_;
   Vec<D> g_, lo_, hi_;
   double time_ = 0.0;

@@ -30,7 +30,13 @@ template <int D>
 double density_sum(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i,
                    kernel::DensityKernel k = kernel::DensityKernel::Spiky) {
   double rho = 0.0;
-  for (const auto j : nb.of(i)) rho += ps.m[j] * kernel::density_kernel<D>(k, (ps.x[i] - ps.x[j]).norm(), ps.h[i]);
+  for (const auto j : nb.of(i)) {
+    // A wall particle samples the material next to it: it counts with that material's rest density
+    // (its mass scaled by ρ0_i/ρ0_j), so sand (ρ0 = 2650) at a wall built for water is not deficient.
+    const bool rescale = !ps.moves(j) && ps.rho0[j] != ps.rho0[i];
+    const double mj = rescale ? ps.m[j] * (ps.rho0[i] / ps.rho0[j]) : ps.m[j];
+    rho += mj * kernel::density_kernel<D>(k, (ps.x[i] - ps.x[j]).norm(), ps.h[i]);
+  }
   return rho;
 }
 

@@ -1,0 +1,65 @@
+#include "sand/clusters.hpp"
+
+#include <deque>
+
+namespace sc {
+
+template <int D>
+Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb) {
+  std::fill(ps.cluster.begin(), ps.cluster.end(), 0);
+  auto joins = [&](std::size_t i) { return ps.phase_of(i) == Phase::Sand && ps.rigid[i] && ps.cluster[i] == 0; };
+  Clusters clusters;
+  std::deque<std::size_t> queue;
+  for (std::size_t seed = 0; seed < ps.size(); ++seed) {
+    if (!joins(seed)) continue;
+    const auto number = static_cast<std::int32_t>(clusters.size() + 1);
+    clusters.emplace_back();
+    ps.cluster[seed] = number;
+    queue.push_back(seed);
+    while (!queue.empty()) {
+      const std::size_t i = queue.front();
+      queue.pop_front();
+      clusters.back().push_back(i);
+      for (const auto j : nb.of(i))
+        if (joins(j)) {
+          ps.cluster[j] = number;
+          queue.push_back(j);
+        }
+    }
+  }
+  return clusters;
+}
+
+template <int D>
+std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt) {
+  std::vector<ClusterMotion<D>> out(clusters.size());
+  const auto n = static_cast<std::int64_t>(clusters.size());
+#pragma omp parallel for schedule(dynamic)
+  for (std::int64_t c = 0; c < n; ++c) out[c] = rigid_motion<D>(clusters[c], ps.m, ps.x, ps.v, ps.force, dt);
+  return out;
+}
+
+template <int D>
+void move_clusters(ParticleSet<D>& ps, const Clusters& clusters, const std::vector<ClusterMotion<D>>& motions,
+                   double dt, double damping) {
+  const auto n = static_cast<std::int64_t>(clusters.size());
+#pragma omp parallel for schedule(dynamic)
+  for (std::int64_t c = 0; c < n; ++c) {
+    const ClusterMotion<D>& motion = motions[c];
+    const Mat<D> R = rotation<D>(dt * motion.omega);
+    const Vec<D> centre = motion.centre + dt * motion.velocity;
+    for (const auto i : clusters[c]) {
+      ps.x[i] = rigid_position<D>(motion, R, ps.x[i], dt);
+      ps.v[i] = damping * (motion.velocity + spin_velocity<D>(motion.omega, ps.x[i] - centre));
+    }
+  }
+}
+
+template Clusters find_clusters<2>(ParticleSet<2>&, const NeighbourGrid<2>&);
+template Clusters find_clusters<3>(ParticleSet<3>&, const NeighbourGrid<3>&);
+template std::vector<ClusterMotion<2>> cluster_motions<2>(const ParticleSet<2>&, const Clusters&, double);
+template std::vector<ClusterMotion<3>> cluster_motions<3>(const ParticleSet<3>&, const Clusters&, double);
+template void move_clusters<2>(ParticleSet<2>&, const Clusters&, const std::vector<ClusterMotion<2>>&, double, double);
+template void move_clusters<3>(ParticleSet<3>&, const Clusters&, const std::vector<ClusterMotion<3>>&, double, double);
+
+}  // namespace sc

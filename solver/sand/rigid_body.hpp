@@ -1,0 +1,169 @@
+// Rigid-body quantities of a cluster of particles (Baraff 2001), in 2-D and 3-D.
+//
+// Angular quantities live in AngVec<D>/AngMat<D>: 3-vectors and 3x3 matrices in 3-D, 1-vectors and
+// 1x1 matrices (the z component) in 2-D, where rotations are about the normal of the plane.
+#pragma once
+#include <span>
+#include <tuple>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace sc {
+
+template <int D>
+inline constexpr int angular_dim = D == 2 ? 1 : 3;
+template <int D>
+using AngVec = Eigen::Matrix<double, angular_dim<D>, 1>;
+template <int D>
+using AngMat = Eigen::Matrix<double, angular_dim<D>, angular_dim<D>>;
+template <int D>
+using VecArrayOf = std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>>;
+
+/// The moment r × f (in 2-D the scalar r_x f_y − r_y f_x).
+template <int D>
+inline AngVec<D> moment(const Vec<D>& r, const Vec<D>& f) {
+  if constexpr (D == 3) return r.cross(f);
+  else return AngVec<2>(r[0] * f[1] - r[1] * f[0]);
+}
+
+/// The velocity ω × r of a point at r from the axis (in 2-D ω is the scalar about z).
+template <int D>
+inline Vec<D> spin_velocity(const AngVec<D>& omega, const Vec<D>& r) {
+  if constexpr (D == 3) return omega.cross(r);
+  else return Vec<2>(-omega[0] * r[1], omega[0] * r[0]);
+}
+
+/// Torque of one particle about the centre of mass [thesis eq. 12b] (Baraff 2001):
+/// τ_i = (r_i − r_cm) × F_i. Correct; only the equation number (12) is used twice in the thesis.
+template <int D>
+inline AngVec<D> torque(const Vec<D>& x, const Vec<D>& centre, const Vec<D>& force) {
+  return moment<D>(x - centre, force);
+}
+
+/// Mass, centre of mass, momentum and angular momentum (about the centre), and inertia of a cluster.
+template <int D>
+struct ClusterMotion {
+  double mass = 0.0;
+  Vec<D> centre = Vec<D>::Zero();
+  Vec<D> momentum = Vec<D>::Zero();
+  AngVec<D> angular_momentum = AngVec<D>::Zero();
+  AngMat<D> inertia = AngMat<D>::Zero();
+  Vec<D> velocity = Vec<D>::Zero();        ///< v_cm = P/M
+  AngVec<D> omega = AngVec<D>::Zero();     ///< ω = I⁻¹ L
+};
+
+/// Total mass and centre of mass of the members.
+template <int D>
+std::pair<double, Vec<D>> mass_and_centre(std::span<const std::size_t> members, std::span<const double> m,
+                                          const VecArrayOf<D>& x) {
+  double M = 0.0;
+  Vec<D> c = Vec<D>::Zero();
+  for (const auto i : members) {
+    M += m[i];
+    c += m[i] * x[i];
+  }
+  return {M, c / M};
+}
+
+/// Cluster force [thesis eq. 13]: F_cluster = Σ_{i ∈ cluster} F_i. Correct as printed.
+template <int D>
+Vec<D> cluster_force(std::span<const std::size_t> members, const VecArrayOf<D>& force) {
+  Vec<D> F = Vec<D>::Zero();
+  for (const auto i : members) F += force[i];
+  return F;
+}
+
+/// Cluster torque [thesis eq. 14]: τ_cluster = Σ_{i ∈ cluster} τ_i, τ_i of eq 12b. Correct.
+template <int D>
+AngVec<D> cluster_torque(std::span<const std::size_t> members, const VecArrayOf<D>& x, const Vec<D>& centre,
+                         const VecArrayOf<D>& force) {
+  AngVec<D> tau = AngVec<D>::Zero();
+  for (const auto i : members) tau += torque<D>(x[i], centre, force[i]);
+  return tau;
+}
+
+/// Inertia tensor about the centre [thesis eq. 17] (Baraff 2001): I = Σ m_j (|r'_j|² 𝟙 − r'_j r'_jᵀ),
+/// r'_j = r_j − r_cm; in 2-D the single entry I_zz = Σ m_j |r'_j|². Erratum 17: the thesis prints
+/// the second diagonal entry as m(r'_y² + r'_z²); it is m(r'_x² + r'_z²). The identity/outer-product
+/// form used here cannot carry that typo.
+template <int D>
+AngMat<D> inertia_tensor(std::span<const std::size_t> members, std::span<const double> m, const VecArrayOf<D>& x,
+                         const Vec<D>& centre) {
+  AngMat<D> I = AngMat<D>::Zero();
+  for (const auto j : members) {
+    const Vec<D> r = x[j] - centre;
+    if constexpr (D == 3) I += m[j] * (r.squaredNorm() * Mat<3>::Identity() - r * r.transpose());
+    else I(0, 0) += m[j] * r.squaredNorm();
+  }
+  return I;
+}
+
+/// Solves I a = b for a, the way [thesis eq. 15] τ = Iα is inverted in [thesis eq. 16] α = I⁻¹τ
+/// (and ω = I⁻¹L). A singular or near-singular I (one particle, or particles on a line) is inverted
+/// on its range only (Moore-Penrose pseudo-inverse, eigenvalues below `rel_tol` times the largest
+/// count as zero), so such clusters cannot spin about the degenerate axis.
+template <int D>
+AngVec<D> solve_inertia(const AngMat<D>& I, const AngVec<D>& b, double rel_tol = 1e-10) {
+  Eigen::SelfAdjointEigenSolver<AngMat<D>> es(I);
+  const auto& lambda = es.eigenvalues();
+  const double largest = lambda.cwiseAbs().maxCoeff();
+  AngVec<D> coeffs = es.eigenvectors().transpose() * b;
+  for (int k = 0; k < angular_dim<D>; ++k) coeffs[k] = lambda[k] > rel_tol * largest && largest > 0.0 ? coeffs[k] / lambda[k] : 0.0;
+  return es.eigenvectors() * coeffs;
+}
+
+/// Rigid motion of a cluster after one step [thesis eq. 15], [thesis eq. 16], [thesis eq. 18]
+/// (corrected form of EQUATIONS.md 15-18):
+///   P = Σ m_j v_j + F_cluster Δt,  L = Σ m_j r'_j × v_j + τ_cluster Δt,  v_cm = P/M,  ω = I⁻¹ L,
+/// from the velocities and forces at the start of the step. Errata: eqs 15-16 drop the gyroscopic
+/// term ω × Iω and the time dependence of I; updating L (not ω) keeps them (angular momentum is
+/// conserved to round-off when τ = 0). Eq 18 divides the cluster force by the particle mass m_i
+/// (N_cluster times too large; it must be the cluster mass M) and adds increments to each particle's
+/// old velocity, which never makes a new cluster rigid; here every member gets v_cm + ω × r'
+/// (apply_rigid_velocity). The cross-product order (α Δt) × r' of the thesis is right.
+template <int D>
+ClusterMotion<D> rigid_motion(std::span<const std::size_t> members, std::span<const double> m,
+                              const VecArrayOf<D>& x, const VecArrayOf<D>& v, const VecArrayOf<D>& force, double dt) {
+  ClusterMotion<D> c;
+  std::tie(c.mass, c.centre) = mass_and_centre<D>(members, m, x);
+  for (const auto j : members) {
+    c.momentum += m[j] * v[j];
+    c.angular_momentum += moment<D>(x[j] - c.centre, m[j] * v[j]);
+  }
+  c.momentum += dt * cluster_force<D>(members, force);
+  c.angular_momentum += dt * cluster_torque<D>(members, x, c.centre, force);
+  c.inertia = inertia_tensor<D>(members, m, x, c.centre);
+  c.velocity = c.momentum / c.mass;
+  // One particle has no rotational inertia: its I and L are round-off about its own centre.
+  if (members.size() > 1) c.omega = solve_inertia<D>(c.inertia, c.angular_momentum);
+  return c;
+}
+
+/// Velocity of a member at x in the rigid motion c: v_cm + ω × (x − r_cm) [thesis eq. 18], corrected.
+template <int D>
+inline Vec<D> rigid_velocity(const ClusterMotion<D>& c, const Vec<D>& x) {
+  return c.velocity + spin_velocity<D>(c.omega, x - c.centre);
+}
+
+/// Rotation matrix of the rotation by the angle vector ω Δt (Rodrigues' formula in 3-D).
+template <int D>
+Mat<D> rotation(const AngVec<D>& angle) {
+  if constexpr (D == 2) {
+    const double c = std::cos(angle[0]), s = std::sin(angle[0]);
+    return (Mat<2>() << c, -s, s, c).finished();
+  } else {
+    const double theta = angle.norm();
+    if (theta == 0.0) return Mat<3>::Identity();
+    return Eigen::AngleAxisd(theta, angle / theta).toRotationMatrix();
+  }
+}
+
+/// Position of a member after a step of the rigid motion: the centre moves with v_cm, the offset
+/// r' turns by R(ω Δt) (no radial drift, unlike x += Δt (ω × r')).
+template <int D>
+inline Vec<D> rigid_position(const ClusterMotion<D>& c, const Mat<D>& R, const Vec<D>& x, double dt) {
+  return c.centre + dt * c.velocity + R * (x - c.centre);
+}
+
+}  // namespace sc

@@ -1,0 +1,126 @@
+#include "sand/sand_forces.hpp"
+
+#include "sand/contact.hpp"
+#include "sand/frictional_force.hpp"
+#include "sand/frictional_stress.hpp"
+#include "sand/strain_rate.hpp"
+#include "sand/yield.hpp"
+#include "water/pressure_force.hpp"
+#include "water/viscosity_force.hpp"
+
+namespace sc {
+
+namespace {
+
+bool is_sand(std::uint8_t phase) { return static_cast<Phase>(phase) == Phase::Sand; }
+
+/// Length of the rigid stress (eq 12a) of particle i.
+template <int D>
+double rigid_length(const ParticleSet<D>& ps, std::size_t i, const SandParams& sand) {
+  return sand.rigid_length == RigidStressLength::Support ? ps.h[i] : std::pow(ps.volume(i), 1.0 / D);
+}
+
+/// Contact law and distance of the pair (i, j); a wall particle counts as infinitely heavy.
+template <int D>
+std::pair<ContactLaw, double> pair_contact(const ParticleSet<D>& ps, std::size_t i, std::size_t j,
+                                           const SandParams& sand, double sound_speed) {
+  const double s = 0.5 * (rest_spacing<D>(ps.m[i], ps.rho0[i]) + rest_spacing<D>(ps.m[j], ps.rho0[j]));
+  const double mj = ps.moves(j) ? ps.m[j] : 0.0;
+  return {contact_law(ps.m[i], mj, s, sound_speed, sand.contact_damping, std::tan(sand.friction_angle_deg * pi / 180.0)), s};
+}
+
+}  // namespace
+
+template <int D>
+void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double gravity,
+                       double dt, MatArray<D>& stress) {
+  stress.assign(ps.size(), Mat<D>::Zero());
+  const double sin_phi = sand.sin_phi();
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    ps.rigid[i] = 0;
+    ps.strain_rate[i] = 0.0;
+    if (!is_sand(ps.phase[i])) continue;
+    const Mat<D> Dr = strain_rate<D>(velocity_gradient(ps, nb, i));
+    const double p = granular_pressure(ps.p[i], ps.rho0[i], gravity, rest_spacing<D>(ps.m[i], ps.rho0[i]));
+    const double L = rigid_length(ps, i, sand);
+    ps.strain_rate[i] = Dr.norm();
+    ps.rigid[i] = is_rigid<D>(rigid_stress<D>(Dr, ps.rho[i], L, dt), p, sin_phi, sand.cohesion) ? 1 : 0;
+    if (!ps.rigid[i] || !sand.rigid_clusters) stress[i] = -frictional_stress<D>(Dr, p, sin_phi);
+  }
+}
+
+template <int D>
+void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, const WaterParams& water,
+                     double sound_speed, const MatArray<D>& correction, const MatArray<D>& stress,
+                     VecArrayOf<D>& wall_force) {
+  wall_force.assign(ps.size(), Vec<D>::Zero());
+  const bool corrected = water.gradient_correction && correction.size() == ps.size();
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!is_sand(ps.phase[i])) continue;
+    const double Vi = ps.volume(i);
+    Vec<D> f = Vec<D>::Zero(), wall = Vec<D>::Zero();
+    for (const auto j : nb.of(i)) {
+      if (j == static_cast<std::size_t>(i)) continue;
+      const Vec<D> d = ps.x[i] - ps.x[j];
+      const double r = d.norm();
+      const double Vj = ps.volume(j);
+      const Vec<D> fp0 = pressure_pair_force<D>(Vi, Vj, ps.p[i], ps.p[j], d, r, ps.h[i], ps.h[j], water.mueller_half_pressure);
+      const Vec<D> fp = corrected ? Vec<D>(0.5 * (correction[i] + correction[j]) * fp0) : fp0;
+      f += fp;
+      if (is_sand(ps.phase[j])) {
+        f += frictional_pair_force<D>(Vi, Vj, stress[i], stress[j], d, r, ps.h[i], ps.h[j]);
+        if (sand.viscosity > 0.0) f += viscosity_pair_force<D>(sand.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
+        continue;
+      }
+      const auto [law, s] = pair_contact(ps, i, j, sand, sound_speed);
+      const Vec<D> fc = contact_force<D>(law, d, r, ps.v[i], ps.v[j], s);
+      f += fc;
+      if (ps.moves(j)) f += viscosity_pair_force<D>(water.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
+      else if (ps.rough[j]) wall += fp + fc;
+    }
+    ps.force[i] += f;
+    wall_force[i] = wall;
+  }
+}
+
+template <int D>
+void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double sound_speed) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (ps.phase_of(i) != Phase::Water) continue;
+    Vec<D> f = Vec<D>::Zero();
+    for (const auto j : nb.of(i)) {
+      if (!is_sand(ps.phase[j])) continue;
+      const Vec<D> d = ps.x[i] - ps.x[j];
+      const auto [law, s] = pair_contact(ps, i, j, sand, sound_speed);
+      f += contact_force<D>(law, d, d.norm(), ps.v[i], ps.v[j], s);
+    }
+    ps.force[i] += f;
+  }
+}
+
+template <int D>
+void add_wall_friction(ParticleSet<D>& ps, const VecArrayOf<D>& wall_force, double mu, double dt) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
+    if (is_sand(ps.phase[i])) ps.force[i] += wall_friction_force<D>(wall_force[i], ps.v[i], ps.force[i], ps.m[i], mu, dt);
+}
+
+#define SC_INSTANTIATE(D)                                                                                         \
+  template void update_sand_state<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, double, double, \
+                                     MatArray<D>&);                                                               \
+  template void add_sand_forces<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, const WaterParams&, \
+                                   double, const MatArray<D>&, const MatArray<D>&, VecArrayOf<D>&);                 \
+  template void add_water_sand_contact<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, double);   \
+  template void add_wall_friction<D>(ParticleSet<D>&, const VecArrayOf<D>&, double, double);
+SC_INSTANTIATE(2)
+SC_INSTANTIATE(3)
+#undef SC_INSTANTIATE
+
+}  // namespace sc

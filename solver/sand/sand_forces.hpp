@@ -1,0 +1,56 @@
+// Sand stages of a step: the yield state and frictional stress of every sand particle, and the
+// forces on sand (pressure, friction, contact, rough walls). Gather loops: each particle writes
+// only its own data, so results do not depend on the number of threads.
+#pragma once
+#include "core/particle_set.hpp"
+#include "neighbours/neighbour_grid.hpp"
+#include "sand/rigid_body.hpp"
+#include "sand/sand_params.hpp"
+#include "sph/gradient_correction.hpp"
+#include "water/water_forces.hpp"
+
+namespace sc {
+
+/// Rest spacing of a particle, s = (m/ρ0)^(1/D) [m].
+template <int D>
+inline double rest_spacing(double m, double rho0) {
+  return std::pow(m / rho0, 1.0 / D);
+}
+
+/// Pressure that enters friction and yield (eqs 8, 10) [Pa]: the SPH pressure, but at least the
+/// weight of half a particle layer, ρ0 |g| s/2. Summation density is deficient at a free surface, so
+/// the state equation gives p = 0 on the top layer, where a grain physically carries its own weight
+/// (Zhu & Bridson's surface grid cells carry ρ g Δx/2): without it surface grains would feel no
+/// friction and the slope of a pile would erode layer by layer. A choice of ours, not in the thesis.
+inline double granular_pressure(double p, double rho0, double gravity, double spacing) {
+  return std::max(p, 0.5 * rho0 * gravity * spacing);
+}
+
+/// For every sand particle: velocity gradient and strain rate (eq 9′), yield test (eq 10) with the
+/// rigid stress (eq 12a) for step dt, and the tension-positive stress Σ_i = −σ_f (eq 8) of flowing
+/// particles (zero for rigid ones, whose motion is the cluster's). Writes ps.rigid, ps.strain_rate
+/// and stress[i] (zero for non-sand particles).
+template <int D>
+void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double gravity,
+                       double dt, MatArray<D>& stress);
+
+/// Adds to ps.force of every sand particle: pressure (eq 4, with the gradient correction of the
+/// water model so that sand-water pairs are symmetric), viscosity (water's μ against water, the
+/// sand viscosity against sand), friction between sand particles (eq 19′), and Bell contact against
+/// water and wall particles. wall_force[i] receives the push of rough wall particles on i (pressure
+/// and contact), the normal force of the wall friction.
+template <int D>
+void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, const WaterParams& water,
+                     double sound_speed, const MatArray<D>& correction, const MatArray<D>& stress,
+                     VecArrayOf<D>& wall_force);
+
+/// Adds to ps.force of every water particle the Bell contact force of its sand neighbours (the
+/// reaction of the sand-water contact in add_sand_forces).
+template <int D>
+void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double sound_speed);
+
+/// Adds the Coulomb friction of rough walls (wall_friction_force) to every sand particle pushed by one.
+template <int D>
+void add_wall_friction(ParticleSet<D>& ps, const VecArrayOf<D>& wall_force, double mu, double dt);
+
+}  // namespace sc
