@@ -7,6 +7,7 @@
 #include "baseline.hpp"
 #include "compare.hpp"
 #include "io/atomic_file.hpp"
+#include "bench.hpp"
 #include "report.hpp"
 #include "runner.hpp"
 
@@ -23,6 +24,7 @@ const CLI::Validator output_folder(
 int run_command(const std::string& case_file, const std::string& out_dir, const std::string& tier, double spacing,
                 long checkpoint_every, const std::string& resume_from) {
   const sc::CaseSpec spec = sc::load_case(case_file);
+  if (!spec.tiers.count(tier)) throw sc::InputError(case_file, "/tiers", "the case has no " + tier + " tier (try --tier full)");
   const double dx = spacing > 0.0 ? spacing : spec.tiers.at(tier).spacings.back();
   sc::RunSettings settings;
   settings.out_dir = out_dir;
@@ -104,6 +106,15 @@ int main(int argc, char** argv) {
   cmp->add_option("--out", compare_out, "output folder")->required();
   cmp->add_flag("!--no-plots", compare_plots, "skip the overlay plots and compare.html");
 
+  sc::BenchOptions benchopt;
+  CLI::App* bench = app.add_subcommand("bench", "Time scenes per step and compare with the thesis: DIR/bench.json");
+  bench->add_option("--scene", benchopt.scenes, "scene (case name) to time, repeatable (default: thesis + water scenes)");
+  bench->add_option("--steps", benchopt.steps, "steps per scene (default 200 water benchmarks, 100 others)")
+      ->check(CLI::PositiveNumber);
+  bench->add_option("--threads", benchopt.threads, "OpenMP threads (default: OMP_NUM_THREADS)")->check(CLI::PositiveNumber);
+  bench->add_option("--out", benchopt.out_dir, "output folder")->required()->check(output_folder);
+  bench->add_option("--cases-dir", benchopt.cases_dir, "folder of cases (default: the repository's cases/)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -114,6 +125,7 @@ int main(int argc, char** argv) {
     if (*run) return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from);
     if (*bl) return bless_command(bopt, bless_from);
     if (*cmp) return sc::compare_runs(compare_a, compare_b, compare_out, compare_plots);
+    if (*bench) return sc::bench(benchopt);
     return sc::validate(vopt);
   } catch (const sc::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -79,6 +79,7 @@ int validate(const ValidateOptions& opt) {
     const std::string name = fs::path(file).parent_path().filename().string();
     try {
       const CaseSpec spec = load_case(file);
+      if (!spec.tiers.count(opt.tier)) continue;  // a scene that is not part of this tier
       entries.push_back(validate_case(spec, opt, exit_code));
     } catch (const InputError& e) {
       std::cerr << "error: " << e.what() << "\n";

@@ -14,12 +14,26 @@
 
 namespace sc::kernel {
 
+/// The normalisation constant `constant(h)` of one kernel, remembered per thread for the last h
+/// seen: all particles of a uniform scene share h, and std::pow with the division costs more than
+/// the rest of a kernel evaluation. The value is computed by the same expression, so results are
+/// bitwise unchanged. (Each call site passes its own lambda, hence its own cache.)
+template <class F>
+inline double remembered(double h, F&& constant) {
+  thread_local double last_h = NAN, last_c = NAN;
+  if (h != last_h) {
+    last_c = constant(h);
+    last_h = h;
+  }
+  return last_c;
+}
+
 /// poly6: W = 315/(64π h⁹)(h²−r²)³ in 3-D, 4/(π h⁸)(h²−r²)³ in 2-D.
 template <int D>
 inline double poly6(double r, double h) {
   if (r >= h) return 0.0;
   const double q = h * h - r * r;
-  const double c = D == 3 ? 315.0 / (64.0 * pi * std::pow(h, 9)) : 4.0 / (pi * std::pow(h, 8));
+  const double c = remembered(h, [](double s) { return D == 3 ? 315.0 / (64.0 * pi * std::pow(s, 9)) : 4.0 / (pi * std::pow(s, 8)); });
   return c * q * q * q;
 }
 
@@ -28,7 +42,7 @@ template <int D>
 inline Vec<D> poly6_gradient(const Vec<D>& d, double r, double h) {
   if (r >= h) return Vec<D>::Zero();
   const double q = h * h - r * r;
-  const double c = D == 3 ? -945.0 / (32.0 * pi * std::pow(h, 9)) : -24.0 / (pi * std::pow(h, 8));
+  const double c = remembered(h, [](double s) { return D == 3 ? -945.0 / (32.0 * pi * std::pow(s, 9)) : -24.0 / (pi * std::pow(s, 8)); });
   return (c * q * q) * d;
 }
 
@@ -37,8 +51,8 @@ template <int D>
 inline double poly6_laplacian(double r, double h) {
   if (r >= h) return 0.0;
   const double q = h * h - r * r;
-  if constexpr (D == 3) return -945.0 / (32.0 * pi * std::pow(h, 9)) * q * (3.0 * h * h - 7.0 * r * r);
-  else return -48.0 / (pi * std::pow(h, 8)) * q * (h * h - 3.0 * r * r);
+  if constexpr (D == 3) return remembered(h, [](double s) { return -945.0 / (32.0 * pi * std::pow(s, 9)); }) * q * (3.0 * h * h - 7.0 * r * r);
+  else return remembered(h, [](double s) { return -48.0 / (pi * std::pow(s, 8)); }) * q * (h * h - 3.0 * r * r);
 }
 
 /// spiky: W = 15/(π h⁶)(h−r)³ in 3-D, 10/(π h⁵)(h−r)³ in 2-D.
@@ -46,7 +60,7 @@ template <int D>
 inline double spiky(double r, double h) {
   if (r >= h) return 0.0;
   const double q = h - r;
-  const double c = D == 3 ? 15.0 / (pi * std::pow(h, 6)) : 10.0 / (pi * std::pow(h, 5));
+  const double c = remembered(h, [](double s) { return D == 3 ? 15.0 / (pi * std::pow(s, 6)) : 10.0 / (pi * std::pow(s, 5)); });
   return c * q * q * q;
 }
 
@@ -55,7 +69,7 @@ template <int D>
 inline double spiky_derivative(double r, double h) {
   if (r >= h) return 0.0;
   const double q = h - r;
-  const double c = D == 3 ? -45.0 / (pi * std::pow(h, 6)) : -30.0 / (pi * std::pow(h, 5));
+  const double c = remembered(h, [](double s) { return D == 3 ? -45.0 / (pi * std::pow(s, 6)) : -30.0 / (pi * std::pow(s, 5)); });
   return c * q * q;
 }
 
@@ -83,7 +97,7 @@ inline double viscosity(double r, double h) {
 template <int D>
 inline double viscosity_laplacian(double r, double h) {
   if (r >= h) return 0.0;
-  return (D == 3 ? 45.0 / (pi * std::pow(h, 6)) : 40.0 / (pi * std::pow(h, 5))) * (h - r);
+  return remembered(h, [](double s) { return D == 3 ? 45.0 / (pi * std::pow(s, 6)) : 40.0 / (pi * std::pow(s, 5)); }) * (h - r);
 }
 
 /// Which kernel the density summation (eq 6) uses. Müller 2003 uses poly6; its flat top lets

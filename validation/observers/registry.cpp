@@ -5,6 +5,7 @@ namespace sc {
 
 template <int D> std::unique_ptr<Observer<D>> make_hydrostatic_observer(const ObserverContext&);
 template <int D> std::unique_ptr<Observer<D>> make_dam_break_observer(const ObserverContext&);
+template <int D> std::unique_ptr<Observer<D>> make_scene_observer(const ObserverContext&);
 
 JsonObject validation_block(const ObserverContext& ctx) {
   JsonObject o(ctx.spec.validation, "/validation", ctx.spec.file);
@@ -16,8 +17,9 @@ JsonObject validation_block(const ObserverContext& ctx) {
 template <int D>
 std::unique_ptr<Observer<D>> make_observer(const ObserverContext& ctx) {
   JsonObject o(ctx.spec.validation, "/validation", ctx.spec.file);
-  const std::string name = o.one_of("observer", {"hydrostatic", "dam_break"});
+  const std::string name = o.one_of("observer", {"hydrostatic", "dam_break", "scene"});
   if (name == "hydrostatic") return make_hydrostatic_observer<D>(ctx);
+  if (name == "scene") return make_scene_observer<D>(ctx);
   return make_dam_break_observer<D>(ctx);
 }
 

@@ -1,0 +1,146 @@
+#include "bench.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+
+#include "io/atomic_file.hpp"
+#include "observer.hpp"
+#include "progress.hpp"
+#include "runner.hpp"
+#include "scene/scene_builder.hpp"
+#include "simulator/simulator.hpp"
+
+namespace fs = std::filesystem;
+
+namespace sc {
+
+namespace {
+
+/// Thesis Ch. 4 (Core i7 975, 3.33 GHz, OpenMP): particle counts at the start and s/step.
+struct ThesisTiming {
+  long sand, water;
+  double seconds_per_step;
+};
+const std::map<std::string, ThesisTiming> thesis_timings = {
+    {"thesis_duck", {11234, 23050, 3.80}},
+    {"thesis_bunny_armadillos", {21456, 15525, 3.67}},
+    {"thesis_bunny_winnie", {21456, 28116, 9.87}},
+    {"thesis_winnie_box", {31107, 40858, 15.74}},
+};
+const std::vector<std::string> default_scenes = {"thesis_duck",         "thesis_bunny_armadillos", "thesis_bunny_winnie",
+                                                 "thesis_winnie_box",   "bench_water_34k",         "bench_water_104k"};
+
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const double pos = q * static_cast<double>(v.size() - 1);
+  const auto k = static_cast<std::size_t>(pos);
+  return k + 1 < v.size() ? v[k] + (pos - k) * (v[k + 1] - v[k]) : v[k];
+}
+
+template <int D>
+json count_phases(const ParticleSet<D>& ps) {
+  std::map<std::string, long> n;
+  for (std::size_t i = 0; i < ps.size(); ++i) ++n[std::string(phase_name(ps.phase_of(i)))];
+  return json{{"water", n["water"]}, {"sand", n["sand"]}, {"boundary", n["boundary"]}, {"total", ps.size()}};
+}
+
+/// Runs `steps` steps of one scene, timing each, and returns its bench.json entry.
+template <int D>
+json bench_scene(const CaseSpec& spec, double dx, long steps) {
+  Simulator<D> sim(build_scene<D>(spec, dx), SimulationParams::from_case(spec, dx));
+  json entry{{"scene", spec.name}, {"spacing", dx}, {"particles", count_phases(sim.particles())}};
+  sim.timers().reset();
+  std::vector<double> ms;
+  Progress progress(spec.name, steps * spec.dt_max);
+  const auto start = std::chrono::steady_clock::now();
+  for (long k = 0; k < steps; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    sim.step();
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    progress.update(sim.time(), sim.steps());
+  }
+  progress.done(sim.time(), sim.steps());
+  const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  json stages = json::object();
+  double staged = 0.0;
+  for (std::size_t s = 0; s < stage_names.size(); ++s) {
+    const double per_step = 1e3 * sim.timers().seconds(static_cast<Stage>(s)) / steps;
+    stages[std::string(stage_names[s])] = per_step;
+    staged += per_step;
+  }
+  stages["other"] = std::max(0.0, 1e3 * total / steps - staged);
+  entry["steps"] = steps;
+  entry["ms_per_step"] = {{"median", quantile(ms, 0.5)}, {"q1", quantile(ms, 0.25)}, {"q3", quantile(ms, 0.75)},
+                          {"min", quantile(ms, 0.0)},    {"max", quantile(ms, 1.0)},  {"mean", 1e3 * total / steps}};
+  entry["stage_ms_per_step"] = stages;
+  entry["checksum"] = sim.particles().checksum();
+  return entry;
+}
+
+void add_thesis_comparison(json& entry) {
+  const auto it = thesis_timings.find(entry.at("scene").get<std::string>());
+  if (it == thesis_timings.end()) return;
+  const ThesisTiming& t = it->second;
+  const double median = entry["ms_per_step"]["median"];
+  entry["thesis"] = {{"sand", t.sand}, {"water", t.water}, {"seconds_per_step", t.seconds_per_step}};
+  entry["speedup_vs_thesis"] = 1e3 * t.seconds_per_step / median;
+}
+
+void print_table(const json& entries) {
+  std::printf("%-24s %8s %8s %8s %4s %10s %9s %9s  %s\n", "scene", "water", "sand", "boundary", "thr", "ms/step", "q1-q3",
+              "speedup", "stages (ms/step)");
+  for (const json& e : entries) {
+    if (e.contains("error")) continue;
+    const json& p = e["particles"];
+    const json& t = e["ms_per_step"];
+    std::string stages;
+    for (const auto& [name, v] : e["stage_ms_per_step"].items())
+      if (v.get<double>() >= 0.05) stages += name + " " + format_number(std::round(10.0 * v.get<double>()) / 10.0) + "  ";
+    char spread[32];
+    std::snprintf(spread, sizeof spread, "%.1f-%.1f", t["q1"].get<double>(), t["q3"].get<double>());
+    const std::string speedup = e.contains("speedup_vs_thesis") ? format_number(std::round(e["speedup_vs_thesis"].get<double>())) + "x" : "-";
+    std::printf("%-24s %8ld %8ld %8ld %4d %10.1f %9s %9s  %s\n", e["scene"].get<std::string>().c_str(), p["water"].get<long>(),
+                p["sand"].get<long>(), p["boundary"].get<long>(), e["threads"].get<int>(), t["median"].get<double>(), spread,
+                speedup.c_str(), stages.c_str());
+  }
+}
+
+}  // namespace
+
+int bench(const BenchOptions& opt) {
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  const std::string cases_dir = opt.cases_dir.empty() ? std::string(SANDCASTLE_SOURCE_DIR) + "/cases" : opt.cases_dir;
+  const std::vector<std::string>& scenes = opt.scenes.empty() ? default_scenes : opt.scenes;
+  fs::create_directories(opt.out_dir);
+  json entries = json::array();
+  int exit_code = kSuccess;
+  for (const std::string& name : scenes) {
+    const std::string file = cases_dir + "/" + name + "/case.json";
+    if (!fs::exists(file)) throw InputError(file, "", "no scene named '" + name + "' (see " + cases_dir + ")");
+    const CaseSpec spec = load_case(file);
+    const double dx = spec.tiers.at("full").spacings.back();
+    const long steps = opt.steps > 0 ? opt.steps : (name.rfind("bench_water", 0) == 0 ? 200 : 100);
+    try {
+      json entry = spec.dimension == 2 ? bench_scene<2>(spec, dx, steps) : bench_scene<3>(spec, dx, steps);
+      entry["threads"] = omp_get_max_threads();
+      add_thesis_comparison(entry);
+      entries.push_back(entry);
+    } catch (const BlowUpError& e) {
+      std::cerr << "error: " << name << ": " << e.what() << "\n";
+      entries.push_back({{"scene", name}, {"error", e.what()}});
+      exit_code = kBlowUp;
+    }
+    write_file_atomic(opt.out_dir + "/bench.json",
+                      json{{"compiler", SANDCASTLE_COMPILER}, {"scenes", entries}}.dump(2) + "\n");
+  }
+  print_table(entries);
+  return exit_code;
+}
+
+}  // namespace sc

@@ -1,0 +1,21 @@
+// `sandcastle bench`: times scenes step by step and compares them with the thesis' timings.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace sc {
+
+struct BenchOptions {
+  std::vector<std::string> scenes;  ///< case names; empty = the four thesis scenes and the two water benchmarks
+  long steps = 0;                   ///< 0 = the scene's default (200 for the water benchmarks, 100 otherwise)
+  int threads = 0;                  ///< OpenMP threads; 0 = OpenMP's default (OMP_NUM_THREADS)
+  std::string out_dir;
+  std::string cases_dir;            ///< default: the repository's cases/
+};
+
+/// Runs every scene at the finest spacing of its full tier and writes out_dir/bench.json: particle
+/// counts, threads, ms/step (median, quartiles, min, max over the steps), the per-stage times
+/// (StageTimers) and the speed-up against the thesis' s/step. Prints a table. Returns the exit code.
+int bench(const BenchOptions& options);
+
+}  // namespace sc
