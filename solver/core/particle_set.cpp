@@ -11,7 +11,7 @@ template <int D>
 std::size_t ParticleSet<D>::append() {
   visit_fields([](std::string_view, auto& field) { field.emplace_back(); });
   const std::size_t i = size() - 1;
-  x[i].setZero(); v[i].setZero(); force[i].setZero();
+  x[i].setZero(); v[i].setZero(); force[i].setZero(); pore_velocity[i].setZero();
   m[i] = 0.0; h[i] = 0.0; rho[i] = 1.0; rho0[i] = 1.0; p[i] = 0.0;
   phase[i] = static_cast<std::uint8_t>(Phase::Water);
   rough[i] = 0;

@@ -38,6 +38,14 @@ class ParticleSet {
   std::vector<std::uint8_t> rigid;   ///< sand: 1 = does not yield (eq 10), 0 = flowing
   std::vector<std::int32_t> cluster; ///< sand: rigid cluster number + 1 of this step, 0 = none
   std::vector<double> strain_rate;   ///< sand: |D|_F [1/s] (eq 9)
+  // --- porous flow (solver/porous/) ---------------------------------------------------------
+  std::vector<double> absorbed;      ///< porous: absorbed water m_p [kg] (eq 21)
+  std::vector<double> emit_store;    ///< porous: absorbed water waiting to leave as a new water particle [kg]
+  std::vector<double> saturation;    ///< porous: S (eq 21)
+  std::vector<double> porosity;      ///< porous: φ (eq 24); 0 for particles that are not porous
+  std::vector<double> capillary;     ///< porous: capillary potential P^c [Pa] (eq 23)
+  std::vector<double> pore_pressure; ///< porous: P^p [Pa] (eq 25)
+  VecArray pore_velocity;            ///< porous and water taking part in the exchange: v_p [m/s] (eq 27)
 
   template <class F>
   void visit_fields(F&& f) {
@@ -45,6 +53,9 @@ class ParticleSet {
     f("mass", m); f("support_radius", h); f("density", rho); f("rest_density", rho0);
     f("pressure", p); f("phase", phase); f("rough", rough); f("id", id);
     f("rigid", rigid); f("cluster", cluster); f("strain_rate", strain_rate);
+    f("absorbed_water", absorbed); f("emit_store", emit_store); f("saturation", saturation);
+    f("porosity", porosity); f("capillary_potential", capillary); f("pore_pressure", pore_pressure);
+    f("pore_velocity", pore_velocity);
   }
   template <class F>
   void visit_fields(F&& f) const { const_cast<ParticleSet*>(this)->visit_fields(f); }

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "porous/porous_setup.hpp"
+
 namespace sc {
 
 namespace {
@@ -128,10 +130,12 @@ CaseSpec load_case(const std::string& path) {
   c.support_ratio = o.in_range("support_ratio", 1.0, 4.0, false, 2.0);
   c.density_window = o.non_negative("density_window", 0.0);
   read_water(o.object("water"), c);
+  if (o.has("porous")) c.porous = read_porous(o.object("porous"), c.water.rest_density);
   if (o.has("sand")) read_sand(o.object("sand"), c);
   for (JsonObject b : o.objects("blocks")) {
     BlockSpec block;
-    block.phase = b.one_of("phase", {"water", "sand"});
+    block.phase = b.one_of("phase", {"water", "sand", "porous_bed"});
+    if (block.phase == "porous_bed" && !c.porous) b.fail("phase", "a porous_bed block needs the \"porous\" section");
     if (block.phase == "sand" && !c.has_sand) b.fail("phase", "a sand block needs the \"sand\" section");
     block.min = b.numbers("min", c.dimension);
     block.max = b.numbers("max", c.dimension);

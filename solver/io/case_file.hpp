@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "io/json_reader.hpp"
+#include "porous/porous_params.hpp"
 #include "sand/sand_params.hpp"
 #include "io/mesh_spec.hpp"
 #include "sph/equation_of_state.hpp"
@@ -49,6 +50,7 @@ struct CaseSpec {
   WaterParams water;
   SandParams sand;              ///< the "sand" section (needed by blocks of phase "sand")
   bool has_sand = false;
+  std::optional<PorousParams> porous;  ///< the "porous" section (porous flow of sand and porous beds)
   std::vector<BlockSpec> blocks;
   std::vector<MeshSpec> meshes;  ///< closed OBJ meshes filled with particles (3-D only)
   std::optional<TankSpec> tank;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "scene/mesh_fill.hpp"
+#include "porous/porous_setup.hpp"
 #include "sph/kernels.hpp"
 
 namespace sc {
@@ -92,12 +93,15 @@ ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
   const double sand_mass = lattice_mass<D>(sand_rho0, dx, h, spec.water.density_kernel);
   for (const BlockSpec& block : spec.blocks) {
     const bool sand = block.phase == "sand";
+    const bool bed = block.phase == "porous_bed";  // fixed porous skeleton: boundary-phase particles
     for (const Vec<D>& p : lattice_points<D>(to_vec<D>(block.min), to_vec<D>(block.max), dx))
-      add_particle(ps, p, sand ? Phase::Sand : Phase::Water, sand ? sand_mass : mass, h, sand ? sand_rho0 : rho0, false);
+      add_particle(ps, p, sand ? Phase::Sand : (bed ? Phase::Boundary : Phase::Water), sand ? sand_mass : mass, h,
+                   sand ? sand_rho0 : rho0, false);
   }
   if constexpr (D == 3)
     for (const MeshSpec& m : spec.meshes)
       for (const Vec<3>& p : mesh_particles(spec, m, dx)) add_particle(ps, p, Phase::Water, mass, h, rho0, false);
+  if (spec.porous) init_porous(ps, *spec.porous, dx);
   if (spec.tank) add_tank(ps, *spec.tank, dx, h, mass, rho0);
   return ps;
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "boundary/wall_pressure.hpp"
+#include "porous/porous_flow.hpp"
+#include "porous/porous_setup.hpp"
 #include "scene/scene_builder.hpp"
 #include "sph/density.hpp"
 #include "water/water_forces.hpp"
@@ -25,6 +27,17 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
   p.gravity = spec.gravity;
   p.domain_min = spec.domain_min;
   p.domain_max = spec.domain_max;
+  if (spec.porous) {
+    p.porous = *spec.porous;
+    const double h = spec.support_ratio * spacing;
+    const double rho0 = spec.water.rest_density;
+    if (spec.dimension == 2)
+      derive_porous<2>(*p.porous, spacing, h, lattice_mass<2>(rho0, spacing, h, spec.water.density_kernel),
+                       spec.water.density_kernel);
+    else
+      derive_porous<3>(*p.porous, spacing, h, lattice_mass<3>(rho0, spacing, h, spec.water.density_kernel),
+                       spec.water.density_kernel);
+  }
   return p;
 }
 
@@ -125,6 +138,10 @@ double Simulator<D>::step() {
     clusters_ = params_.sand.rigid_clusters ? find_clusters(ps_, nb_) : Clusters{};
   }
   integrate(dt);
+  if (params_.porous) {  // thesis Fig. 3.6 line 7: absorption and emission (solver/porous/)
+    auto t = timers_.time(Stage::Porous);
+    porous_step(ps_, nb_, *params_.porous, g_, dt);
+  }
   last_dt_ = dt;
   ps_.compact();
   try {

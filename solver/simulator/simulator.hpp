@@ -21,6 +21,7 @@ struct SimulationParams {
   EquationOfState eos;
   WaterParams water;
   SandParams sand;
+  std::optional<PorousParams> porous;  ///< porous flow (solver/porous/), derived for the case spacing
   std::vector<double> gravity, domain_min, domain_max;
 
   static SimulationParams from_case(const CaseSpec& spec, double spacing);

@@ -1,0 +1,297 @@
+#include "porous/porous_flow.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "porous/capillary.hpp"
+#include "porous/darcy.hpp"
+#include "porous/diffusion.hpp"
+#include "porous/pore_pressure.hpp"
+#include "porous/saturation.hpp"
+
+namespace sc {
+
+namespace {
+
+constexpr double kPlacementGap = 0.8;  // new water particles: no particle closer than this many spacings
+
+template <int D>
+struct Work {
+  std::vector<ExchangeSlot<D>> slot;
+  std::vector<std::uint8_t> part, porous, exposed;
+  std::vector<double> pc, pp, ghost, out, in, a, b;
+  typename ParticleSet<D>::VecArray target;
+};
+
+template <int D>
+bool porous_at(const ParticleSet<D>& ps, std::size_t i) { return is_porous_phase(ps.phase_of(i), ps.porosity[i]); }
+
+template <int D>
+double spacing_of(const ParticleSet<D>& ps, std::size_t i, const PorousParams& p) {
+  return ps.phase_of(i) == Phase::Boundary ? p.spacing : std::pow(ps.volume(i), 1.0 / D);
+}
+
+/// Porous particles and water particles with a porous neighbour take part.
+template <int D>
+void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, Work<D>& w) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    w.porous[i] = porous_at(ps, i);
+    bool near = false;
+    if (ps.phase_of(i) == Phase::Water)
+      for (const auto j : nb.of(i)) near = near || porous_at(ps, j);
+    w.part[i] = w.porous[i] || near;
+  }
+}
+
+/// Saturation (eq 21), porosity (eq 24), capillary potential (eq 23) and pore pressure (eq 25)
+/// of porous particles; the saturated-porous view of water particles.
+template <int D>
+void fill_slots(ParticleSet<D>& ps, const PorousParams& p, Work<D>& w) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+  const double rho_f = p.fluid_density;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!w.part[i]) continue;
+    ExchangeSlot<D>& s = w.slot[i];
+    s.x = ps.x[i];
+    s.h = ps.h[i];
+    if (!w.porous[i]) {
+      s.mass = ps.m[i];
+      s.capacity = p.water_mass;
+      s.flow_factor = 1.0;
+      s.volume = p.water_mass / rho_f;
+      continue;
+    }
+    const bool fixed = ps.phase_of(i) == Phase::Boundary;
+    const double V = fixed ? std::pow(p.spacing, D) : ps.volume(i);
+    ps.porosity[i] = fixed ? p.porosity : porosity(p.porosity, ps.rho0[i], ps.rho[i]);
+    const double S = saturation(ps.absorbed[i], rho_f, ps.porosity[i], V);
+    ps.saturation[i] = S;
+    ps.capillary[i] = capillary_potential(S, p.capillary_constant, p.capillary_exponent);
+    ps.pore_pressure[i] = fixed ? 0.0 : pore_pressure(p.pore_stiffness, S, ps.rho[i], ps.rho0[i], p.pore_gamma,
+                                                      p.thesis_pore_pressure_ratio);
+    w.pc[i] = ps.capillary[i];
+    w.pp[i] = ps.pore_pressure[i];
+    s.mass = ps.absorbed[i];
+    s.capacity = rho_f * ps.porosity[i] * V;
+    s.flow_factor = std::pow(S, p.saturation_exponent);
+    s.volume = V;
+  }
+}
+
+/// Pore velocity (eq 27) from the gradients (eq 22) of capillary potential and pore pressure.
+template <int D>
+void pore_velocities(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
+                     Work<D>& w) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+  const bool pore = p.pore_stiffness != 0.0, capillary = p.capillary_constant != 0.0;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!w.part[i]) continue;
+    const Vec<D> grad_c = capillary ? porous_gradient(ps, nb, w.pc, w.part, i, p.gradient) : Vec<D>::Zero();
+    const Vec<D> grad_p = pore ? porous_gradient(ps, nb, w.pp, w.part, i, p.gradient) : Vec<D>::Zero();
+    const double phi = w.porous[i] ? ps.porosity[i] : 1.0;
+    ps.pore_velocity[i] = pore_velocity<D>(p.permeability, p.fluid_viscosity, phi, grad_p, grad_c, p.fluid_density, g);
+    w.slot[i].pore_velocity = ps.pore_velocity[i];
+  }
+}
+
+/// Seepage into empty space: the target one spacing along v_p and the flow a full half-space
+/// of receivers would take there (zero when the place is occupied or the suction holds the water).
+template <int D>
+void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
+              Work<D>& w) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    w.exposed[i] = 0;
+    w.ghost[i] = 0.0;
+    if (!w.porous[i]) continue;
+    const double speed = ps.pore_velocity[i].norm();
+    const double s = spacing_of(ps, i, p);
+    if (speed <= 0.0 || ps.capillary[i] > p.fluid_density * g.norm() * s) continue;
+    w.target[i] = ps.x[i] + (s / speed) * ps.pore_velocity[i];
+    bool free = true;
+    for (const auto j : nb.of(i)) free = free && (ps.x[j] - w.target[i]).norm() >= kPlacementGap * s;
+    w.exposed[i] = free;
+    if (free && ps.absorbed[i] > 0.0) w.ghost[i] = w.slot[i].flow_factor * ps.absorbed[i] * speed / s;
+  }
+}
+
+template <int D>
+bool exchanges(const Work<D>& w, std::size_t i, std::size_t j) {
+  return j != i && w.part[j] && (w.porous[i] || w.porous[j]);
+}
+
+/// Conserving diffusion (28′): raw flows (kept per neighbour-list entry), limiter scales,
+/// limited update (eq 30).
+template <int D>
+void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, double dt, Work<D>& w) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+  std::vector<std::size_t> start(ps.size() + 1, 0);
+  for (std::size_t i = 0; i < ps.size(); ++i) start[i + 1] = start[i] + nb.of(i).size();
+  std::vector<double> to(start.back(), 0.0), from(start.back(), 0.0);  // Φ_{i→j}, Φ_{j→i}
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!w.part[i]) continue;
+    double out = w.ghost[i], in = 0.0;
+    std::size_t k = start[i];
+    for (const auto j : nb.of(i)) {
+      if (exchanges(w, i, j)) {
+        to[k] = pair_flow(w.slot[i], w.slot[j], p.flux_length_factor);
+        from[k] = pair_flow(w.slot[j], w.slot[i], p.flux_length_factor);
+        out += to[k];
+        in += from[k];
+      }
+      ++k;
+    }
+    w.a[i] = outflow_scale(w.slot[i].mass, out, dt);
+    w.b[i] = inflow_scale(w.slot[i].mass, w.slot[i].capacity, in, dt);
+  }
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!w.part[i]) continue;
+    double out = w.ghost[i] * w.a[i], in = 0.0;
+    std::size_t k = start[i];
+    for (const auto j : nb.of(i)) {
+      out += to[k] * std::min(w.a[i], w.b[j]);
+      in += from[k] * std::min(w.a[j], w.b[i]);
+      ++k;
+    }
+    const double m = euler_mass(w.slot[i].mass, in, out, dt);
+    if (w.porous[i]) {
+      ps.absorbed[i] = m;
+      ps.emit_store[i] += dt * w.ghost[i] * w.a[i];
+    } else {
+      ps.m[i] = m;
+    }
+  }
+}
+
+/// The literal eq 28 (switch "lenaerts_literal"): each particle integrates its own rate and is
+/// clamped to [0, capacity]; water is neither conserved nor emitted into empty space.
+template <int D>
+void diffuse_literal(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double dt, Work<D>& w) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!w.part[i]) continue;
+    double rate = 0.0;
+    for (const auto j : nb.of(i))
+      if (exchanges(w, i, j)) rate += literal_rate(w.slot[i], w.slot[j]);
+    const double m = std::clamp(w.slot[i].mass + dt * rate, 0.0, w.slot[i].capacity);
+    (w.porous[i] ? ps.absorbed[i] : ps.m[i]) = m;
+  }
+}
+
+/// Rest density of a water particle whose own mass m differs from a full particle's m0 (ours [I]):
+/// ρ0_i = ρ^f − (m0 − m_i) W(0, h_i). In the density sum of eq 6 the self term m_i W(0, h) is most
+/// of ρ (about 80 % with the spiky kernel at h = 2 dx), so without this a half-absorbed particle
+/// sits deep in tension, has zero pressure and lets the pond sink into the porous bed (measured in
+/// darcy_column); with it the particle is at rest where a full one would be.
+template <int D>
+void rest_density_of_water(ParticleSet<D>& ps, const PorousParams& p, const Work<D>& w) {
+  const double self = kernel::density_kernel<D>(p.density_kernel, 0.0, p.water_support);
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (w.part[i] && !w.porous[i]) ps.rho0[i] = p.fluid_density - (p.water_mass - ps.m[i]) * self;
+}
+
+/// Deletes water particles that are (nearly) empty, giving their rest to the porous neighbour
+/// with the most room (kept if none has room). Serial, index order.
+template <int D>
+std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Work<D>& w) {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (!w.part[i] || w.porous[i] || ps.m[i] >= p.min_water_fraction * p.water_mass) continue;
+    std::size_t best = i;
+    double best_room = -1.0;
+    for (const auto j : nb.of(i)) {
+      if (!w.porous[j]) continue;
+      const double room = w.slot[j].capacity - ps.absorbed[j];
+      if (room > best_room) { best = j; best_room = room; }
+    }
+    if (best == i || best_room < ps.m[i]) continue;
+    ps.absorbed[best] += ps.m[i];
+    ps.m[i] = 0.0;
+    ps.queue_remove(i);
+    ++count;
+  }
+  return count;
+}
+
+/// Creates water particles from full emission stores at free targets; returns stores of
+/// particles that are no longer exposed to m_p (as far as they have room). Serial, index order.
+template <int D>
+std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const Work<D>& w) {
+  std::size_t count = 0;
+  typename ParticleSet<D>::VecArray placed;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (!w.porous[i] || ps.emit_store[i] <= 0.0) continue;
+    const double s = spacing_of(ps, i, p);
+    bool free = w.exposed[i];
+    for (const Vec<D>& x : placed) free = free && (x - w.target[i]).norm() >= kPlacementGap * s;
+    if (!free) {
+      const double back = std::min(ps.emit_store[i], std::max(0.0, w.slot[i].capacity - ps.absorbed[i]));
+      ps.absorbed[i] += back;
+      ps.emit_store[i] -= back;
+      continue;
+    }
+    if (ps.emit_store[i] < p.create_fraction * p.water_mass) continue;
+    ParticleSet<D>& add = ps.additions();
+    const std::size_t k = add.append();
+    add.x[k] = w.target[i];
+    add.v[k] = ps.v[i];
+    add.m[k] = ps.emit_store[i];
+    add.h[k] = p.water_support;
+    add.rho0[k] = p.fluid_density - (p.water_mass - add.m[k]) * kernel::density_kernel<D>(p.density_kernel, 0.0, p.water_support);
+    add.rho[k] = add.rho0[k];
+    ps.emit_store[i] = 0.0;
+    placed.push_back(w.target[i]);
+    ++count;
+  }
+  return count;
+}
+
+}  // namespace
+
+template <int D>
+PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& params,
+                             const Vec<D>& gravity, double dt) {
+  const std::size_t n = ps.size();
+  Work<D> w;
+  w.slot.assign(n, ExchangeSlot<D>{});
+  w.part.assign(n, 0); w.porous.assign(n, 0); w.exposed.assign(n, 0);
+  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.out, &w.in, &w.a, &w.b}) v->assign(n, 0.0);
+  w.target.assign(n, Vec<D>::Zero());
+  mark_participants(ps, nb, w);
+  fill_slots(ps, params, w);
+  pore_velocities(ps, nb, params, gravity, w);
+  PorousStepCounts counts;
+  if (params.diffusion == PorousDiffusion::LenaertsLiteral) {
+    diffuse_literal(ps, nb, dt, w);
+  } else {
+    exposure(ps, nb, params, gravity, w);
+    diffuse_conserving(ps, nb, params, dt, w);
+    counts.created = emit_new(ps, params, w);
+  }
+  counts.absorbed = absorb_small(ps, nb, params, w);
+  rest_density_of_water(ps, params, w);
+  return counts;
+}
+
+template <int D>
+double total_water(const ParticleSet<D>& ps) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    sum += ps.phase_of(i) == Phase::Water ? ps.m[i] : ps.absorbed[i] + ps.emit_store[i];
+  return sum;
+}
+
+template PorousStepCounts porous_step<2>(ParticleSet<2>&, const NeighbourGrid<2>&, const PorousParams&, const Vec<2>&, double);
+template PorousStepCounts porous_step<3>(ParticleSet<3>&, const NeighbourGrid<3>&, const PorousParams&, const Vec<3>&, double);
+template double total_water<2>(const ParticleSet<2>&);
+template double total_water<3>(const ParticleSet<3>&);
+
+}  // namespace sc

@@ -1,0 +1,54 @@
+// One step of porous flow (thesis §3.4-3.5 after Lenaerts et al. 2008): saturation, capillary and
+// pore pressure, pore velocity, conserving diffusion of absorbed water, absorption of water
+// particles and emission into water particles or new ones.
+//
+// Who takes part: porous particles (porosity > 0: moving sand, or a fixed porous skeleton of
+// boundary-phase particles) and water particles with a porous neighbour (Lenaerts §4, thesis
+// Fig. 3.7 cases B and C). A water particle gives water as a saturated porous particle (S = 1,
+// φ = 1) and receives it as an unsaturated one with room up to a full-size particle's mass; its
+// mass (hence its volume m/ρ) shrinks or grows with what it gives or gets, and it is deleted once
+// it falls below `min_water_fraction` of a full particle (its rest goes to the porous neighbour
+// with the most room). Water pairs exchange nothing; non-porous walls take no part.
+// Deviation from Lenaerts (who also scale the support with the radius): the support radius stays
+// that of a full particle. With the gather density of eq 6, ρ_i = Σ_j m_j W(r, h_i), a particle
+// with a shrunken h_i next to a full one sees m0 W(r, h_i) ~ (m0/m_i) ρ0 and the Tait pressure
+// explodes (measured: the exchange unit test blew up at step 682); a shrinking support needs the
+// scatter density Σ_j m_j W(r, h_j), which the solver does not use.
+//
+// Emission into empty space (Lenaerts §4.2): a porous particle whose pore velocity points to an
+// empty place one spacing away (no particle within 0.8 spacing) and whose capillary suction is
+// below one spacing of water head (a seepage face: water leaves into air only where its pressure
+// reaches the atmosphere's, ours [I]) sends the flow a full lattice half-space would take,
+// S^β m_p |v_p| / s, into its emission store; once the store holds `create_fraction` of a full
+// water particle, a water particle is created there (placed away from all particles, including
+// those created earlier in the same step). Stores flow back into m_p while not exposed.
+//
+// Determinism: every loop over particles is a gather that writes only its own entries; pair
+// flows are computed identically by both particles; deletions and creations are queued serially
+// in index order.
+#pragma once
+#include "core/particle_set.hpp"
+#include "neighbours/neighbour_grid.hpp"
+#include "porous/porous_params.hpp"
+
+namespace sc {
+
+/// Counts of the exchange in one step.
+struct PorousStepCounts {
+  std::size_t absorbed = 0;  ///< water particles deleted (fully absorbed)
+  std::size_t created = 0;   ///< water particles created by emission
+};
+
+/// Advances the absorbed water by dt. Deletions and creations are queued in `ps` (applied by
+/// compact()). Fixed porous particles (boundary phase) keep φ = φ0 and P^p = 0.
+template <int D>
+PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& params,
+                             const Vec<D>& gravity, double dt);
+
+/// Water in the scene [kg]: water particle mass plus absorbed water (m_p and emission stores).
+template <int D>
+double total_water(const ParticleSet<D>& ps);
+
+inline bool is_porous_phase(Phase phase, double porosity) { return phase != Phase::Water && porosity > 0.0; }
+
+}  // namespace sc

@@ -1,0 +1,71 @@
+// Measurements shared by the porous-flow observers: the water balance (REFERENCES.md §8), the
+// saturation bounds, and horizontal-row averages over the central band of a porous column.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "porous/porous_flow.hpp"
+#include "simulator/simulator.hpp"
+
+namespace sc {
+
+/// Free water plus absorbed water, against its value at the first sample; and the saturation
+/// m_p/(ρ^f φ V) of every porous particle *before* eq 21's clamp, so that a limiter failure shows.
+template <int D>
+class WaterBalanceProbe {
+ public:
+  void sample(const Simulator<D>& sim) {
+    const auto& ps = sim.particles();
+    const PorousParams& p = *sim.params().porous;
+    const double total = total_water(ps);
+    if (first_) { initial_ = total; first_ = false; }
+    error_ = std::max(error_, std::abs(total - initial_) / initial_);
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (!is_porous_phase(ps.phase_of(i), ps.porosity[i])) continue;
+      const double V = ps.phase_of(i) == Phase::Boundary ? std::pow(p.spacing, D) : ps.volume(i);
+      const double S = ps.absorbed[i] / (p.fluid_density * ps.porosity[i] * V);
+      s_min_ = std::min(s_min_, S);
+      s_max_ = std::max(s_max_, S);
+    }
+  }
+  double relative_error() const { return error_; }
+  /// How far any raw saturation left [0, 1] (0 if never), with a round-off allowance of 1e-12.
+  double saturation_violation() const { return std::max({0.0, -s_min_ - 1e-12, s_max_ - 1.0 - 1e-12}); }
+
+ private:
+  bool first_ = true;
+  double initial_ = 0.0, error_ = 0.0, s_min_ = 0.0, s_max_ = 1.0;
+};
+
+/// Porous (fixed-skeleton) particles whose x lies in [lo, hi]: the central band of a column.
+template <int D>
+bool in_porous_band(const ParticleSet<D>& ps, std::size_t i, double lo, double hi) {
+  return ps.phase_of(i) == Phase::Boundary && ps.porosity[i] > 0.0 && ps.x[i][0] >= lo && ps.x[i][0] <= hi;
+}
+
+/// Mean of `field` over the porous particles of the band, in rows one spacing high from `z0`.
+template <int D>
+std::vector<double> row_means(const ParticleSet<D>& ps, const std::vector<double>& field, double lo, double hi,
+                              double z0, double dx, std::size_t rows) {
+  std::vector<double> sum(rows, 0.0), count(rows, 0.0);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (!in_porous_band(ps, i, lo, hi)) continue;
+    const double k = std::floor((ps.x[i][D - 1] - z0) / dx);
+    if (k < 0.0 || k >= static_cast<double>(rows)) continue;
+    sum[static_cast<std::size_t>(k)] += field[i];
+    count[static_cast<std::size_t>(k)] += 1.0;
+  }
+  for (std::size_t k = 0; k < rows; ++k) sum[k] = count[k] > 0.0 ? sum[k] / count[k] : NAN;
+  return sum;
+}
+
+/// Least-squares slope of y(x).
+inline double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const double n = static_cast<double>(x.size());
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) { sx += x[k]; sy += y[k]; sxx += x[k] * x[k]; sxy += x[k] * y[k]; }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+}  // namespace sc
