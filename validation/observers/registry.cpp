@@ -5,6 +5,7 @@ namespace sc {
 
 template <int D> std::unique_ptr<Observer<D>> make_hydrostatic_observer(const ObserverContext&);
 template <int D> std::unique_ptr<Observer<D>> make_dam_break_observer(const ObserverContext&);
+template <int D> std::unique_ptr<Observer<D>> make_scene_observer(const ObserverContext&);
 template <int D> std::unique_ptr<Observer<D>> make_darcy_column_observer(const ObserverContext&);
 template <int D> std::unique_ptr<Observer<D>> make_green_ampt_observer(const ObserverContext&);
 template <int D> std::unique_ptr<Observer<D>> make_capillary_rise_observer(const ObserverContext&);
@@ -19,11 +20,12 @@ JsonObject validation_block(const ObserverContext& ctx) {
 template <int D>
 std::unique_ptr<Observer<D>> make_observer(const ObserverContext& ctx) {
   JsonObject o(ctx.spec.validation, "/validation", ctx.spec.file);
-  const std::string name = o.one_of("observer", {"hydrostatic", "dam_break", "darcy_column", "green_ampt", "capillary_rise"});
+  const std::string name = o.one_of("observer", {"hydrostatic", "dam_break", "darcy_column", "green_ampt", "capillary_rise", "scene"});
   if (name == "darcy_column") return make_darcy_column_observer<D>(ctx);
   if (name == "green_ampt") return make_green_ampt_observer<D>(ctx);
   if (name == "capillary_rise") return make_capillary_rise_observer<D>(ctx);
   if (name == "hydrostatic") return make_hydrostatic_observer<D>(ctx);
+  if (name == "scene") return make_scene_observer<D>(ctx);
   return make_dam_break_observer<D>(ctx);
 }
 
