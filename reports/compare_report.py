@@ -2,51 +2,20 @@
 """Draws the overlay plots of `sandcastle compare` and writes OUT_DIR/compare.html.
 
 Usage: compare_report.py OUT_DIR   (reads OUT_DIR/compare.json, format: reports/README.md)
-Every plot of run A's series.json is redrawn to OUT_DIR/<case>/<file>: a series equal in both
-runs (the reference, or an unchanged observable) is drawn once; one that differs is drawn for
-A (solid) and B (dashed).
+Every plot of run A's series.json is redrawn to OUT_DIR/<case>/<file> with both runs
+(overlay.py: a series equal in both is drawn once, one that differs for A solid and B dashed).
 """
 import json
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-from html_report import esc, image, number, page, table  # noqa: E402
+import overlay
+from html_report import esc, image, number, page, table
 
 
 def load(path):
     with open(path) as f:
         return json.load(f)
-
-
-def draw_curve(ax, s, style, label, dashed):
-    if style == "markers":
-        ax.plot(s["x"], s["y"], "s" if dashed else "o", ms=5, mfc="none", label=label)
-    else:
-        ax.plot(s["x"], s["y"], "--" if dashed else "-", lw=1.6, label=label)
-
-
-def draw(plot, series_a, series_b, path):
-    fig, ax = plt.subplots(figsize=(6.4, 4.4), dpi=110)
-    for curve in plot["curves"]:
-        a, b = series_a.get(curve["series"]), series_b.get(curve["series"])
-        same = a is not None and b is not None and a["x"] == b["x"] and a["y"] == b["y"]
-        if a is not None:
-            draw_curve(ax, a, curve["style"], curve["label"] if same else "A: " + curve["label"], False)
-        if b is not None and not same:
-            draw_curve(ax, b, curve["style"], "B: " + curve["label"], True)
-    ax.set_title(plot["title"], fontsize=10)
-    ax.set_xlabel(plot["x_label"])
-    ax.set_ylabel(plot["y_label"])
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
 
 
 def plots_of(out_dir, case):
@@ -61,7 +30,7 @@ def plots_of(out_dir, case):
     paths = []
     for plot in doc_a["plots"]:
         path = os.path.join(out_dir, case["name"], plot["file"])
-        draw(plot, series_a, series_b, path)
+        overlay.draw(plot, series_a, series_b, ("A", "B"), path)
         paths.append(path)
     return paths
 

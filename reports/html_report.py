@@ -114,13 +114,34 @@ def baseline_section(b):
     return out + table(["metric", "baseline", "this run", "delta", "relative", "limit", "verdict"], rows)
 
 
+def baseline_overlays(run_dir, c):
+    """For a case that moved from its baseline: its plots redrawn with the baseline's series
+    (<case>/baseline_<file>); returns the <img> tags."""
+    b = c.get("baseline", {})
+    if b.get("status") not in ("changed", "regressed") or not c.get("series") or not os.path.exists(b["file"]):
+        return ""
+    import overlay  # matplotlib only where a case moved
+
+    with open(b["file"]) as f:
+        base = {s["name"]: s for s in json.load(f)["series"]}
+    with open(os.path.join(run_dir, c["series"])) as f:
+        doc = json.load(f)
+    run = {s["name"]: s for s in doc["series"]}
+    tags = []
+    for plot in doc["plots"]:
+        path = os.path.join(run_dir, c["name"], "baseline_" + plot["file"])
+        overlay.draw(plot, base, run, ("baseline", "this run"), path)
+        tags.append(image(path))
+    return "<p>against the baseline:</p><div>" + "".join(tags) + "</div>"
+
+
 def case_section(run_dir, c):
     out = f'<h2 id="{esc(c["name"])}">{esc(c["name"])} <span class="{c["status"]}">{esc(c["status"])}</span></h2>'
     if "message" in c:
         out += f"<p><code>{esc(c['message'])}</code></p>"
     out += metrics_table(c["metrics"])
     if "baseline" in c:
-        out += baseline_section(c["baseline"])
+        out += baseline_section(c["baseline"]) + baseline_overlays(run_dir, c)
     return out + "<div>" + "".join(image(os.path.join(run_dir, p)) for p in c["plots"]) + "</div>"
 
 

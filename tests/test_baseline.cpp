@@ -1,7 +1,7 @@
 // Regression baselines: the series difference (resampling, abscissa choice), the "regression"
 // block of a case file, and the acceptance test of issue 8: a copy of a case with its water
 // viscosity doubled is reported as changed, with the delta on the front series, while an untouched
-// case is identical to its baseline.
+// case is identical to its baseline; `sandcastle compare` of the two runs reports the same deltas.
 #include <boost/test/unit_test.hpp>
 #include <filesystem>
 #include <fstream>
@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include "baseline.hpp"
+#include "compare.hpp"
 #include "io/case_file.hpp"
 #include "run_record.hpp"
 
@@ -101,6 +102,20 @@ BOOST_AUTO_TEST_CASE(a_profile_is_compared_along_its_increasing_coordinate) {
   BOOST_TEST(!series_difference(base, not_monotone).note.empty());
 }
 
+BOOST_AUTO_TEST_CASE(a_thinned_time_series_still_compares_identical) {
+  Series full = series({}, {});
+  for (int k = 0; k <= 5000; ++k) {
+    full.x.push_back(1e-4 * k);
+    full.y.push_back(std::sin(1e-3 * k));
+  }
+  const Series thin = thinned(full, 2000);
+  BOOST_TEST(thin.x.size() <= 2000u);
+  BOOST_TEST(thin.x.back() == full.x.back());
+  BOOST_TEST(series_difference(thin, full).max_difference == 0.0);  // bitwise: no false "changed"
+  const Series profile = series({1.0, 0.0, 1.0}, {1.0, 0.0, 1.0});  // compared point by point: kept whole
+  BOOST_TEST(thinned(profile, 2).x.size() == 3u);
+}
+
 BOOST_AUTO_TEST_CASE(metric_difference_handles_null) {
   BOOST_TEST(metric_difference(2.0, 2.5).relative == 0.25);
   BOOST_TEST(metric_difference(NAN, NAN).delta == 0.0);
@@ -152,6 +167,13 @@ BOOST_AUTO_TEST_CASE(doubled_viscosity_is_reported_changed_untouched_case_identi
   BOOST_TEST(b.at("series").at("front_sim").at("max_difference").get<double>() > 1e-3);
   BOOST_TEST(b.at("series").at("front_martin_moyce").at("max_difference").get<double>() == 0.0);
   BOOST_TEST(b.at("metrics").at("front_rms").at("delta").get<double>() != 0.0);
+
+  const json diff = compare_document((root / "run0").string(), (root / "run1").string());  // sandcastle compare
+  BOOST_TEST(diff.at("cases").at(0).at("identical") == true);
+  const json& moved = diff.at("cases").at(1);
+  BOOST_TEST(moved.at("identical") == false);
+  BOOST_TEST(moved.at("metrics").at("front_rms").at("delta") == b.at("metrics").at("front_rms").at("delta"));
+  BOOST_TEST(moved.at("series").at("front_sim").at("relative_rms") == b.at("series").at("front_sim").at("relative_rms"));
 
   json strict = generous;
   strict["series"]["front_sim"] = {{"relative", 1e-6}};

@@ -1,5 +1,6 @@
 #include "baseline.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -15,6 +16,10 @@ namespace fs = std::filesystem;
 namespace sc {
 
 namespace {
+
+/// Points kept per series in a baseline file (run_record.hpp, thinned): enough to resample a
+/// time series, small enough for git.
+constexpr std::size_t kBaselinePoints = 2000;
 
 RunRecord record_from_baseline(const json& doc, const std::string& file) {
   try {
@@ -166,8 +171,10 @@ json baseline_document(const json& report, const json& entry, const std::string&
   const RunRecord r = record_from_entry(entry, run_dir);
   json metrics = json::object(), series = json::array();
   for (const auto& [name, value] : r.metrics) metrics[name] = finite_or_null(value);
-  for (const Series& s : r.series)
+  for (const Series& full : r.series) {
+    const Series s = thinned(full, kBaselinePoints);
     series.push_back({{"name", s.name}, {"x_label", s.x_label}, {"y_label", s.y_label}, {"x", s.x}, {"y", s.y}});
+  }
   const json provenance = {{"commit", report.at("git_commit")}, {"date", date}, {"parameters_hash", r.parameters_hash},
                            {"threads", report.at("threads")}, {"compiler", report.at("compiler")},
                            {"flags", report.value("flags", "")}};

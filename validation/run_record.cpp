@@ -1,5 +1,6 @@
 #include "run_record.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -79,6 +80,21 @@ SeriesDelta series_difference(const Series& base, const Series& other) {
   }
   const double relative = base2 > 0.0 ? std::sqrt(diff2 / base2) : (diff2 > 0.0 ? kInf : 0.0);
   return {relative, worst, ""};
+}
+
+Series thinned(const Series& s, std::size_t max_points) {
+  if (s.x.size() <= max_points || orient(s).kind == "index") return s;
+  const std::size_t stride = (s.x.size() + max_points - 2) / (max_points - 1);
+  Series out{s.name, s.x_label, s.y_label, {}, {}};
+  for (std::size_t k = 0; k < s.x.size(); k += stride) {
+    out.x.push_back(s.x[k]);
+    out.y.push_back(s.y[k]);
+  }
+  if (out.x.back() != s.x.back()) {
+    out.x.push_back(s.x.back());
+    out.y.push_back(s.y.back());
+  }
+  return out;
 }
 
 MetricDelta metric_difference(double base, double other) {

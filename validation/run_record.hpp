@@ -34,6 +34,10 @@ struct SeriesDelta {
 };
 SeriesDelta series_difference(const Series& base, const Series& other);
 
+/// At most `max_points` points of a series with an increasing x or y (every k-th and the last),
+/// for storing it in a baseline; other series are kept whole (they are compared point by point).
+Series thinned(const Series& s, std::size_t max_points);
+
 /// Difference of an end-state metric: delta = other - base, relative = |delta| / |base|.
 /// null (NaN) against null is no difference; null against a number is an infinite one.
 struct MetricDelta {
