@@ -17,7 +17,7 @@ bool is_sand(std::uint8_t phase) { return static_cast<Phase>(phase) == Phase::Sa
 /// Length of the rigid stress (eq 12a) of particle i.
 template <int D>
 double rigid_length(const ParticleSet<D>& ps, std::size_t i, const SandParams& sand) {
-  return sand.rigid_length == RigidStressLength::Support ? ps.h[i] : std::pow(ps.volume(i), 1.0 / D);
+  return sand.rigid_length == RigidStressLength::Support ? ps.h[i] : rest_spacing<D>(ps.m[i], ps.rho[i]);
 }
 
 /// Contact law and distance of the pair (i, j); a wall particle counts as infinitely heavy.
@@ -37,12 +37,15 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
   stress.assign(ps.size(), Mat<D>::Zero());
   const double sin_phi = sand.sin_phi();
   const auto n = static_cast<std::int64_t>(ps.size());
+  VecArrayOf<D> predicted(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) predicted[i] = ps.moves(i) ? Vec<D>(ps.v[i] + (dt / ps.m[i]) * ps.force[i]) : ps.v[i];
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     ps.rigid[i] = 0;
     ps.strain_rate[i] = 0.0;
     if (!is_sand(ps.phase[i])) continue;
-    const Mat<D> Dr = strain_rate<D>(velocity_gradient(ps, nb, i));
+    const Mat<D> Dr = strain_rate<D>(velocity_gradient(ps, nb, i, &predicted));
     const double p = granular_pressure(ps.p[i], ps.rho0[i], gravity, rest_spacing<D>(ps.m[i], ps.rho0[i]));
     const double L = rigid_length(ps, i, sand);
     ps.strain_rate[i] = Dr.norm();
@@ -53,8 +56,7 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
 
 template <int D>
 void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, const WaterParams& water,
-                     double sound_speed, const MatArray<D>& correction, const MatArray<D>& stress,
-                     VecArrayOf<D>& wall_force) {
+                     double sound_speed, const MatArray<D>& correction, VecArrayOf<D>& wall_force) {
   wall_force.assign(ps.size(), Vec<D>::Zero());
   const bool corrected = water.gradient_correction && correction.size() == ps.size();
   const auto n = static_cast<std::int64_t>(ps.size());
@@ -72,7 +74,6 @@ void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandP
       const Vec<D> fp = corrected ? Vec<D>(0.5 * (correction[i] + correction[j]) * fp0) : fp0;
       f += fp;
       if (is_sand(ps.phase[j])) {
-        f += frictional_pair_force<D>(Vi, Vj, stress[i], stress[j], d, r, ps.h[i], ps.h[j]);
         if (sand.viscosity > 0.0) f += viscosity_pair_force<D>(sand.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
         continue;
       }
@@ -84,6 +85,25 @@ void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandP
     }
     ps.force[i] += f;
     wall_force[i] = wall;
+  }
+}
+
+template <int D>
+void add_frictional_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const MatArray<D>& stress,
+                           const MatArray<D>& correction) {
+  const bool corrected = correction.size() == ps.size();
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!is_sand(ps.phase[i])) continue;
+    Vec<D> f = Vec<D>::Zero();
+    for (const auto j : nb.of(i)) {
+      if (j == static_cast<std::size_t>(i) || !is_sand(ps.phase[j])) continue;
+      const Vec<D> d = ps.x[i] - ps.x[j];
+      const Vec<D> fp = frictional_pair_force<D>(ps.volume(i), ps.volume(j), stress[i], stress[j], d, d.norm(), ps.h[i], ps.h[j]);
+      f += corrected ? Vec<D>(0.5 * (correction[i] + correction[j]) * fp) : fp;
+    }
+    ps.force[i] += f;
   }
 }
 
@@ -116,7 +136,9 @@ void add_wall_friction(ParticleSet<D>& ps, const VecArrayOf<D>& wall_force, doub
   template void update_sand_state<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, double, double, \
                                      MatArray<D>&);                                                               \
   template void add_sand_forces<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, const WaterParams&, \
-                                   double, const MatArray<D>&, const MatArray<D>&, VecArrayOf<D>&);                 \
+                                   double, const MatArray<D>&, VecArrayOf<D>&);                                   \
+  template void add_frictional_forces<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const MatArray<D>&,             \
+                                         const MatArray<D>&);                                                     \
   template void add_water_sand_contact<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, double);   \
   template void add_wall_friction<D>(ParticleSet<D>&, const VecArrayOf<D>&, double, double);
 SC_INSTANTIATE(2)

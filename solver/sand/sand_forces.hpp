@@ -14,7 +14,8 @@ namespace sc {
 /// Rest spacing of a particle, s = (m/ρ0)^(1/D) [m].
 template <int D>
 inline double rest_spacing(double m, double rho0) {
-  return std::pow(m / rho0, 1.0 / D);
+  if constexpr (D == 2) return std::sqrt(m / rho0);
+  else return std::cbrt(m / rho0);
 }
 
 /// Pressure that enters friction and yield (eqs 8, 10) [Pa]: the SPH pressure, but at least the
@@ -26,23 +27,32 @@ inline double granular_pressure(double p, double rho0, double gravity, double sp
   return std::max(p, 0.5 * rho0 * gravity * spacing);
 }
 
-/// For every sand particle: velocity gradient and strain rate (eq 9′), yield test (eq 10) with the
-/// rigid stress (eq 12a) for step dt, and the tension-positive stress Σ_i = −σ_f (eq 8) of flowing
-/// particles (zero for rigid ones, whose motion is the cluster's). Writes ps.rigid, ps.strain_rate
-/// and stress[i] (zero for non-sand particles).
+/// For every sand particle: velocity gradient and strain rate (eq 9′) of the velocities the step
+/// would produce without friction, v* = v + Δt F/m (as Zhu & Bridson test the velocity after
+/// gravity and pressure: a column at rest must still feel that it is about to collapse), the yield
+/// test (eq 10) with the rigid stress (eq 12a) for step dt, and the tension-positive stress
+/// Σ_i = −σ_f (eq 8) of flowing particles (zero for rigid ones, whose motion is the cluster's).
+/// Writes ps.rigid, ps.strain_rate and stress[i] (zero for non-sand particles).
 template <int D>
 void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double gravity,
                        double dt, MatArray<D>& stress);
 
+/// Adds the frictional force between sand particles (eq 19′) of the stresses Σ = −σ_f, with the
+/// symmetrised kernel-gradient correction (L_i + L_j)/2 of the pressure force when `correction` is
+/// filled: the spiky gradient alone is 30 % short at h = 2 dx (tests/test_sand.cpp), which weakens
+/// friction by as much (measured: a φ = 30° pile stood at 23°). The pair term stays antisymmetric.
+template <int D>
+void add_frictional_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const MatArray<D>& stress,
+                           const MatArray<D>& correction);
+
 /// Adds to ps.force of every sand particle: pressure (eq 4, with the gradient correction of the
 /// water model so that sand-water pairs are symmetric), viscosity (water's μ against water, the
-/// sand viscosity against sand), friction between sand particles (eq 19′), and Bell contact against
+/// sand viscosity against sand), and Bell contact against
 /// water and wall particles. wall_force[i] receives the push of rough wall particles on i (pressure
 /// and contact), the normal force of the wall friction.
 template <int D>
 void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, const WaterParams& water,
-                     double sound_speed, const MatArray<D>& correction, const MatArray<D>& stress,
-                     VecArrayOf<D>& wall_force);
+                     double sound_speed, const MatArray<D>& correction, VecArrayOf<D>& wall_force);
 
 /// Adds to ps.force of every water particle the Bell contact force of its sand neighbours (the
 /// reaction of the sand-water contact in add_sand_forces).

@@ -1,6 +1,7 @@
 // Velocity gradient and strain rate of sand particles (SPH, after Solenthaler et al. 2007).
 #pragma once
 #include "core/particle_set.hpp"
+#include "sand/rigid_body.hpp"
 #include "neighbours/neighbour_grid.hpp"
 #include "sph/kernels.hpp"
 
@@ -17,17 +18,19 @@ inline Vec<D> d_ij(double Vj, const Vec<D>& d, double r, double hj) {
 
 /// Velocity gradient [thesis eq. 9] (corrected form 9′ of EQUATIONS.md):
 ///   G_i = ∇v_i = Σ_j V_j (v_j − v_i) ⊗ gradW_ij(h_j),   (row: velocity component, column: ∂/∂x)
-/// over the sand neighbours j of sand particle i. Errata of eq 9: (a) the thesis omits −v_i, so a
+/// over the sand neighbours j of sand particle i, for the velocity field `v` (default: ps.v). Errata of eq 9: (a) the thesis omits −v_i, so a
 /// uniform translation would show a gradient wherever the neighbourhood is not symmetric (free
 /// surfaces); (b) it uses v_j Δt, a dimensionless increment, where the strain *rate* (1/s) is needed
 /// by eq 12a; (d) the sign holds only with gradients taken with respect to x_i (§0).
 template <int D>
-Mat<D> velocity_gradient(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i) {
+Mat<D> velocity_gradient(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i,
+                         const VecArrayOf<D>* velocities = nullptr) {
+  const VecArrayOf<D>& v = velocities ? *velocities : ps.v;
   Mat<D> G = Mat<D>::Zero();
   for (const auto j : nb.of(i)) {
     if (j == i || ps.phase_of(j) != Phase::Sand) continue;
     const Vec<D> d = ps.x[i] - ps.x[j];
-    G += (ps.v[j] - ps.v[i]) * d_ij<D>(ps.volume(j), d, d.norm(), ps.h[j]).transpose();
+    G += (v[j] - v[i]) * d_ij<D>(ps.volume(j), d, d.norm(), ps.h[j]).transpose();
   }
   return G;
 }
