@@ -52,10 +52,17 @@ void check_frames_listed_exist(const std::string& dir) {
   BOOST_TEST(count > 0);
 }
 
+/// True if a file is being written in `dir` (a temporary *.tmp.* file exists).
+bool writing(const std::string& dir) {
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().find(".tmp.") != std::string::npos) return true;
+  return false;
+}
+
 /// Starts `sandcastle run` on the small case in `out` (resuming from its newest checkpoint, if
 /// any) and kills it with SIGKILL once it has written the checkpoint of step `kill_at`.
 void run_and_kill(const std::string& out, long kill_at) {
-  std::vector<std::string> args{"run", small_case, "--out", out, "--checkpoint-every", "10"};
+  std::vector<std::string> args{"run", small_case, "--out", out, "--checkpoint-every", "5"};  // writes often
   if (fs::exists(out) && !newest_checkpoint(out).empty()) args.insert(args.end(), {"--resume", newest_checkpoint(out)});
   test::Child child(args, {"OMP_NUM_THREADS=1"});
   const char* name_format = "/checkpoint_%08ld.ckpt";
@@ -64,6 +71,9 @@ void run_and_kill(const std::string& out, long kill_at) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (!fs::exists(out + target) && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  const auto aim_until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (!writing(out) && std::chrono::steady_clock::now() < aim_until) {
+  }  // aim the kill at a moment a file is being written
   child.kill(SIGKILL);
   const test::ProcessResult r = child.wait(30.0);
   BOOST_TEST(r.signal == SIGKILL, "the run ended before it was killed (exit " << r.exit_code << ")");
@@ -108,7 +118,12 @@ BOOST_AUTO_TEST_CASE(sigkill_leaves_only_complete_files_and_the_run_resumes) {
   const std::string out = test::fresh_path("killed");
   for (long kill_at : {150, 400, 650}) {  // the same folder, killed three times, resumed in between
     run_and_kill(out, kill_at);
-    for (const auto& e : fs::directory_iterator(out)) check_complete(e.path());
+    int temporaries = 0;
+    for (const auto& e : fs::directory_iterator(out)) {
+      check_complete(e.path());
+      temporaries += e.path().filename().string().find(".tmp.") != std::string::npos;
+    }
+    BOOST_TEST_MESSAGE("killed at step >= " << kill_at << ": " << temporaries << " unfinished *.tmp.* file(s) left");
     check_frames_listed_exist(out);
   }
   const test::ProcessResult last = test::run_sandcastle({"run", small_case, "--out", out, "--resume", newest_checkpoint(out)});

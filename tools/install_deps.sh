@@ -3,6 +3,7 @@
 set -euo pipefail
 packages=(build-essential cmake libeigen3-dev libboost-test-dev libgsl-dev nlohmann-json3-dev libcli11-dev
           libtinyobjloader-dev
+          clang libclang-rt-14-dev libomp-14-dev
           python3 python3-matplotlib python3-numpy git)
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Builds the unit tests (and the command they run) with AddressSanitizer and
+# UndefinedBehaviorSanitizer in build-asan/ and runs them (ctest -L unit).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSANDCASTLE_SANITIZE=ON >/dev/null
+cmake --build build-asan -j"$(nproc)" --target unit_tests
+cd build-asan
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest --output-on-failure -L unit
