@@ -27,6 +27,9 @@ void check_box(JsonObject& o, const std::vector<double>& lo, const std::vector<d
 void read_water(JsonObject o, CaseSpec& c) {
   c.water.rest_density = o.positive("rest_density");
   c.water.viscosity = o.non_negative("viscosity", 0.0);
+  c.artificial_viscosity = o.non_negative("artificial_viscosity", 0.0);
+  if (o.has("viscosity") && o.has("artificial_viscosity"))
+    o.fail("artificial_viscosity", "give either viscosity (Pa s) or artificial_viscosity (alpha), not both");
   c.water.surface_tension = o.non_negative("surface_tension", 0.0);
   c.water.density_kernel = o.one_of("density_kernel", {"spiky", "poly6"}, "spiky") == "spiky"
                                ? kernel::DensityKernel::Spiky : kernel::DensityKernel::Poly6;
@@ -130,8 +133,8 @@ CaseSpec load_case(const std::string& path) {
   c.support_ratio = o.in_range("support_ratio", 1.0, 4.0, false, 2.0);
   c.density_window = o.non_negative("density_window", 0.0);
   read_water(o.object("water"), c);
-  if (o.has("porous")) c.porous = read_porous(o.object("porous"), c.water.rest_density);
   if (o.has("sand")) read_sand(o.object("sand"), c);
+  if (o.has("porous")) c.porous = read_porous(o.object("porous"), c.water.rest_density);
   for (JsonObject b : o.objects("blocks")) {
     BlockSpec block;
     block.phase = b.one_of("phase", {"water", "sand", "porous_bed"});
@@ -148,13 +151,16 @@ CaseSpec load_case(const std::string& path) {
   }
   if (o.has("meshes")) {
     if (c.dimension != 3) o.fail("meshes", "meshes need \"dimension\": 3");
-    for (JsonObject m : o.objects("meshes")) c.meshes.push_back(read_mesh(m, path, {"water"}));
+    for (JsonObject m : o.objects("meshes"))
+      c.meshes.push_back(read_mesh(m, path, c.has_sand ? std::vector<std::string>{"water", "sand"} : std::vector<std::string>{"water"}));
   }
   if (o.has("tank")) {
     read_tank(o.object("tank"), c);
     check_blocks_inside_tank(c);
   }
   c.validation = o.has("validation") ? o.raw("validation") : json::object();
+  if (o.has("regression")) c.regression = read_regression(o.object("regression"));
+  c.parameters_hash = parameters_hash(doc);
   read_tiers(o.object("tiers"), c);
   o.finish();
   double largest_spacing = 0.0;

@@ -7,9 +7,10 @@
 #include <vector>
 
 #include "io/json_reader.hpp"
+#include "io/mesh_spec.hpp"
+#include "io/regression_spec.hpp"
 #include "porous/porous_params.hpp"
 #include "sand/sand_params.hpp"
-#include "io/mesh_spec.hpp"
 #include "sph/equation_of_state.hpp"
 #include "water/water_forces.hpp"
 
@@ -48,6 +49,9 @@ struct CaseSpec {
   double density_window = 0.0;  ///< blow-up guard: |ρ/ρ0 − 1| above this stops the run; 0 = off
   EquationOfState eos;
   WaterParams water;
+  /// Monaghan's α; when set, μ = α ρ0 h c / (2(D + 2)) at each spacing (h: support), so the
+  /// numerical viscosity shrinks with the resolution. 0 = use water.viscosity as given.
+  double artificial_viscosity = 0.0;
   SandParams sand;              ///< the "sand" section (needed by blocks of phase "sand")
   bool has_sand = false;
   std::optional<PorousParams> porous;  ///< the "porous" section (porous flow of sand and porous beds)
@@ -55,6 +59,8 @@ struct CaseSpec {
   std::vector<MeshSpec> meshes;  ///< closed OBJ meshes filled with particles (3-D only)
   std::optional<TankSpec> tank;
   json validation;              ///< checked by the observer named in it (validation/observers)
+  RegressionSpec regression;    ///< limits of the comparison with the baseline
+  std::string parameters_hash;  ///< of the canonical case JSON (io/regression_spec.hpp)
   std::map<std::string, TierSpec> tiers;
 };
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "scene/mesh_fill.hpp"
 #include "porous/porous_setup.hpp"
+#include "scene/mesh_fill.hpp"
 #include "sph/kernels.hpp"
 
 namespace sc {
@@ -99,8 +99,11 @@ ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
                    sand ? sand_rho0 : rho0, false);
   }
   if constexpr (D == 3)
-    for (const MeshSpec& m : spec.meshes)
-      for (const Vec<3>& p : mesh_particles(spec, m, dx)) add_particle(ps, p, Phase::Water, mass, h, rho0, false);
+    for (const MeshSpec& m : spec.meshes) {
+      const bool sand = m.phase == "sand";
+      for (const Vec<3>& p : mesh_particles(spec, m, dx))
+        add_particle(ps, p, sand ? Phase::Sand : Phase::Water, sand ? sand_mass : mass, h, sand ? sand_rho0 : rho0, false);
+    }
   if (spec.porous) init_porous(ps, *spec.porous, dx);
   if (spec.tank) add_tank(ps, *spec.tank, dx, h, mass, rho0);
   return ps;

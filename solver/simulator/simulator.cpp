@@ -24,6 +24,9 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
   p.sand = spec.sand;
   const double volume = std::pow(spacing, spec.dimension);
   p.water.reference_mass = spec.water.rest_density * volume;
+  if (spec.artificial_viscosity > 0.0)  // ν = α h c / (2(D + 2)) (Monaghan 1992)
+    p.water.viscosity = spec.artificial_viscosity * spec.water.rest_density * spec.support_ratio * spacing *
+                        spec.eos.sound_speed / (2.0 * (spec.dimension + 2));
   p.gravity = spec.gravity;
   p.domain_min = spec.domain_min;
   p.domain_max = spec.domain_max;
@@ -139,11 +142,11 @@ double Simulator<D>::step() {
     clusters_ = params_.sand.rigid_clusters ? find_clusters(ps_, nb_) : Clusters{};
   }
   integrate(dt);
+  last_dt_ = dt;
   if (params_.porous) {  // thesis Fig. 3.6 line 7: absorption and emission (solver/porous/)
     auto t = timers_.time(Stage::Porous);
     porous_step(ps_, nb_, *params_.porous, g_, dt);
   }
-  last_dt_ = dt;
   ps_.compact();
   try {
     check_state();

@@ -31,9 +31,10 @@ double density_sum(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::si
                    kernel::DensityKernel k = kernel::DensityKernel::Spiky) {
   double rho = 0.0;
   for (const auto j : nb.of(i)) {
-    // A wall particle samples the material next to it: it counts with that material's rest density
-    // (its mass scaled by ρ0_i/ρ0_j), so sand (ρ0 = 2650) at a wall built for water is not deficient.
-    const bool rescale = !ps.moves(j) && ps.rho0[j] != ps.rho0[i];
+    // A wall particle samples the sand next to it: it counts with the sand's rest density (its mass
+    // scaled by ρ0_i/ρ0_j), so sand (ρ0 = 2650) at a wall built for water is not deficient. Water
+    // keeps the wall's own mass (porous flow lowers a water particle's rest density as it drains).
+    const bool rescale = ps.phase_of(i) == Phase::Sand && !ps.moves(j) && ps.rho0[j] != ps.rho0[i];
     const double mj = rescale ? ps.m[j] * (ps.rho0[i] / ps.rho0[j]) : ps.m[j];
     rho += mj * kernel::density_kernel<D>(k, (ps.x[i] - ps.x[j]).norm(), ps.h[i]);
   }
