@@ -18,6 +18,7 @@
 #include "scene/scene_builder.hpp"
 #include "sph/density.hpp"
 #include "water/water_forces.hpp"
+#include "support/lattice.hpp"
 
 using namespace sc;
 namespace tt = boost::test_tools;
@@ -26,18 +27,7 @@ namespace {
 
 /// An n x n lattice of sand particles at spacing dx, support `ratio` dx, calibrated mass.
 ParticleSet<2> sand_lattice(int n, double dx, double ratio = 2.0, double rho0 = 2650.0) {
-  ParticleSet<2> ps;
-  const double h = ratio * dx;
-  const double m = lattice_mass<2>(rho0, dx, h, kernel::DensityKernel::Spiky);
-  for (const auto& x : lattice_points<2>(Vec<2>::Zero(), Vec<2>::Constant(n * dx), dx)) {
-    const std::size_t i = ps.append();
-    ps.x[i] = x;
-    ps.m[i] = m;
-    ps.h[i] = h;
-    ps.rho0[i] = ps.rho[i] = rho0;
-    ps.phase[i] = static_cast<std::uint8_t>(Phase::Sand);
-  }
-  return ps;
+  return test::square_lattice(n, dx, ratio, rho0, Phase::Sand);
 }
 
 NeighbourGrid<2> neighbours_with_density(ParticleSet<2>& ps) {

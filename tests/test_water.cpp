@@ -12,6 +12,7 @@
 #include "water/surface_tension.hpp"
 #include "water/viscosity_force.hpp"
 #include "water/water_forces.hpp"
+#include "support/lattice.hpp"
 
 using namespace sc;
 
@@ -19,17 +20,7 @@ namespace {
 
 /// A square lattice of n x n water particles at spacing dx with calibrated mass and support ratio 3.
 ParticleSet<2> lattice(int n, double dx, double rho0 = 1000.0) {
-  ParticleSet<2> ps;
-  const double h = 3.0 * dx;
-  const double m = lattice_mass<2>(rho0, dx, h, kernel::DensityKernel::Spiky);
-  for (const auto& x : lattice_points<2>(Vec<2>::Zero(), Vec<2>::Constant(n * dx), dx)) {
-    const std::size_t i = ps.append();
-    ps.x[i] = x;
-    ps.m[i] = m;
-    ps.h[i] = h;
-    ps.rho0[i] = ps.rho[i] = rho0;
-  }
-  return ps;
+  return test::square_lattice(n, dx, 3.0, rho0, Phase::Water);
 }
 
 std::size_t centre_index(int n) { return static_cast<std::size_t>((n / 2) * n + n / 2); }
