@@ -16,6 +16,7 @@ namespace {
 
 const std::string cases_dir = std::string(SANDCASTLE_SOURCE_DIR) + "/tests/reliability";
 const std::string small_case = cases_dir + "/small_dam_break.json";  // 929 steps at its quick spacing
+const std::string adaptive_case = cases_dir + "/small_dam_break_adaptive.json";  // the same, splitting and merging
 
 /// The newest checkpoint_<step>.ckpt in `dir` (complete files only), or "" if none.
 std::string newest_checkpoint(const std::string& dir) {
@@ -96,15 +97,38 @@ BOOST_AUTO_TEST_CASE(unstable_case_stops_with_exit_3_naming_step_and_particle) {
   BOOST_TEST(r.err.find(out + "/last_good.ckpt") != std::string::npos);
 }
 
-BOOST_AUTO_TEST_CASE(resumed_run_ends_bitwise_equal_to_the_uninterrupted_run) {
+namespace {
+
+/// Runs `case_file` once through and once resumed from its step-300 checkpoint; returns the
+/// uninterrupted and the resumed output folders after checking that both end with one checksum.
+std::pair<std::string, std::string> run_and_resume(const std::string& case_file) {
   const std::string full = test::fresh_path("full"), resumed = test::fresh_path("resumed");
-  const test::ProcessResult a = test::run_sandcastle({"run", small_case, "--out", full, "--checkpoint-every", "100"});
+  const test::ProcessResult a = test::run_sandcastle({"run", case_file, "--out", full, "--checkpoint-every", "100"});
   BOOST_TEST_REQUIRE(a.exit_code == 0, a.err);
   const test::ProcessResult b = test::run_sandcastle(
-      {"run", small_case, "--out", resumed, "--checkpoint-every", "100", "--resume", full + "/checkpoint_00000300.ckpt"});
+      {"run", case_file, "--out", resumed, "--checkpoint-every", "100", "--resume", full + "/checkpoint_00000300.ckpt"});
   BOOST_TEST_REQUIRE(b.exit_code == 0, b.err);
   BOOST_TEST(test::printed_checksum(a.out).size() == 16u);
   BOOST_TEST(test::printed_checksum(a.out) == test::printed_checksum(b.out));
+  return {full, resumed};
+}
+
+/// Checksums of three runs of `case_file` with 1, 2 and 2 threads.
+std::vector<std::string> checksums_by_threads(const std::string& case_file) {
+  std::vector<std::string> sums;
+  for (const char* threads : {"1", "2", "2"}) {
+    const test::ProcessResult r = test::run_sandcastle({"run", case_file, "--out", test::fresh_path("threads")}, 300.0,
+                                                       {std::string("OMP_NUM_THREADS=") + threads, "OMP_WAIT_POLICY=passive"});
+    BOOST_TEST(r.exit_code == 0, r.err);
+    sums.push_back(test::printed_checksum(r.out));
+  }
+  return sums;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(resumed_run_ends_bitwise_equal_to_the_uninterrupted_run) {
+  const auto [full, resumed] = run_and_resume(small_case);
   // Every particle field, the clock and the frame log: the last checkpoints are byte-identical.
   const std::string last = fs::path(newest_checkpoint(full)).filename().string();
   BOOST_TEST(last == "checkpoint_00000900.ckpt");
@@ -133,16 +157,21 @@ BOOST_AUTO_TEST_CASE(sigkill_leaves_only_complete_files_and_the_run_resumes) {
 }
 
 BOOST_AUTO_TEST_CASE(state_checksum_is_independent_of_thread_count_and_repeatable) {
-  std::vector<std::string> sums;
-  for (const char* threads : {"1", "2", "2"}) {
-    const test::ProcessResult r = test::run_sandcastle({"run", small_case, "--out", test::fresh_path("threads")}, 300.0,
-                                                       {std::string("OMP_NUM_THREADS=") + threads, "OMP_WAIT_POLICY=passive"});
-    BOOST_TEST(r.exit_code == 0, r.err);
-    sums.push_back(test::printed_checksum(r.out));
+  for (const std::string& case_file : {small_case, adaptive_case}) {
+    BOOST_TEST_CONTEXT(case_file) {
+      const std::vector<std::string> sums = checksums_by_threads(case_file);
+      BOOST_TEST(sums[0].size() == 16u);
+      BOOST_TEST(sums[0] == sums[1]);
+      BOOST_TEST(sums[1] == sums[2]);
+    }
   }
-  BOOST_TEST(sums[0].size() == 16u);
-  BOOST_TEST(sums[0] == sums[1]);
-  BOOST_TEST(sums[1] == sums[2]);
+}
+
+// Splits and merges create and delete particles (fresh ids, density offsets): a resumed adaptive
+// run must still end bitwise equal to the uninterrupted one.
+BOOST_AUTO_TEST_CASE(adaptive_run_resumes_bitwise) {
+  const auto [full, resumed] = run_and_resume(adaptive_case);
+  BOOST_TEST(test::read_text(full + "/final.vtu") == test::read_text(resumed + "/final.vtu"));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

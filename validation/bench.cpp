@@ -80,7 +80,27 @@ json bench_scene(const CaseSpec& spec, double dx, long steps) {
                           {"min", quantile(ms, 0.0)},    {"max", quantile(ms, 1.0)},  {"mean", 1e3 * total / steps}};
   entry["stage_ms_per_step"] = stages;
   entry["checksum"] = sim.particles().checksum();
+  entry["final_particles"] = count_phases(sim.particles());
   return entry;
+}
+
+json bench_any(const CaseSpec& spec, double dx, long steps) {
+  return spec.dimension == 2 ? bench_scene<2>(spec, dx, steps) : bench_scene<3>(spec, dx, steps);
+}
+
+/// What adaptivity buys: the same scene without its "adaptive" section, timed over the same
+/// steps, as entry["uniform"], and the ratios of mean ms/step and of moving particles at the end.
+void add_uniform_comparison(const CaseSpec& spec, double dx, long steps, json& entry) {
+  CaseSpec uniform = spec;
+  uniform.adaptive.reset();
+  uniform.name = spec.name + " (uniform)";
+  const json u = bench_any(uniform, dx, steps);
+  entry["uniform"] = u;
+  entry["adaptive_speedup"] = u["ms_per_step"]["mean"].get<double>() / entry["ms_per_step"]["mean"].get<double>();
+  const auto moving = [](const json& e) {
+    return static_cast<double>(e["final_particles"]["water"].get<long>() + e["final_particles"]["sand"].get<long>());
+  };
+  entry["particle_ratio_final"] = moving(u) / moving(entry);
 }
 
 void add_thesis_comparison(json& entry) {
@@ -108,6 +128,10 @@ void print_table(const json& entries) {
     std::printf("%-24s %8ld %8ld %8ld %4d %10.1f %9s %9s  %s\n", e["scene"].get<std::string>().c_str(), p["water"].get<long>(),
                 p["sand"].get<long>(), p["boundary"].get<long>(), e["threads"].get<int>(), t["median"].get<double>(), spread,
                 speedup.c_str(), stages.c_str());
+    if (e.contains("adaptive_speedup"))
+      std::printf("%-24s uniform %.1f ms/step (mean) vs adaptive %.1f: %.2fx faster; %.2fx fewer moving particles at the end\n", "",
+                  e["uniform"]["ms_per_step"]["mean"].get<double>(), t["mean"].get<double>(), e["adaptive_speedup"].get<double>(),
+                  e["particle_ratio_final"].get<double>());
   }
 }
 
@@ -127,9 +151,10 @@ int bench(const BenchOptions& opt) {
     const double dx = spec.tiers.at("full").spacings.back();
     const long steps = opt.steps > 0 ? opt.steps : (name.rfind("bench_water", 0) == 0 ? 200 : 100);
     try {
-      json entry = spec.dimension == 2 ? bench_scene<2>(spec, dx, steps) : bench_scene<3>(spec, dx, steps);
+      json entry = bench_any(spec, dx, steps);
       entry["threads"] = omp_get_max_threads();
       add_thesis_comparison(entry);
+      if (spec.adaptive) add_uniform_comparison(spec, dx, steps, entry);
       entries.push_back(entry);
     } catch (const BlowUpError& e) {
       std::cerr << "error: " << name << ": " << e.what() << "\n";

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "adaptive_report.hpp"
 #include "io/atomic_file.hpp"
 #include "io/vtu_writer.hpp"
 #include "progress.hpp"
@@ -46,11 +47,20 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   const auto start = std::chrono::steady_clock::now();
   Progress progress(settings.label, end);
   observer->sample(sim);
+  auto count_moving = [&]() {
+    const auto& ps = sim.particles();
+    long n = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) n += ps.moves(i) ? 1 : 0;
+    result.moving_particles.x.push_back(sim.time());
+    result.moving_particles.y.push_back(static_cast<double>(n));
+  };
+  count_moving();
   try {
     if (settings.write_frames && frames.empty()) write_frame();
     while (sim.time() < end - 1e-12) {
       sim.step();
       observer->sample(sim);
+      count_moving();
       if (settings.write_frames && spec.frame_interval > 0.0 && sim.time() >= next_frame + spec.frame_interval - 1e-12) {
         next_frame += spec.frame_interval;
         write_frame();
@@ -73,6 +83,9 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.steps = sim.steps();
   result.checksum = sim.particles().checksum();
+  const auto& counts = result.moving_particles.y;
+  for (double c : counts) result.moving_particles_mean += c / static_cast<double>(counts.size());
+  if (spec.adaptive) result.adapt = sim.adapt_account();
   if (result.status != "error") {
     write_file_atomic(settings.out_dir + "/final.vtu", vtu_document(sim.particles()));
     result.observed = observer->finish(sim);
@@ -86,7 +99,9 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
 }  // namespace
 
 RunResult run_simulation(const CaseSpec& spec, double dx, const RunSettings& settings) {
-  return spec.dimension == 2 ? run_in_dimension<2>(spec, dx, settings) : run_in_dimension<3>(spec, dx, settings);
+  RunResult r = spec.dimension == 2 ? run_in_dimension<2>(spec, dx, settings) : run_in_dimension<3>(spec, dx, settings);
+  if (spec.adaptive && r.status != "error") add_adaptive_results(spec, dx, settings, r);
+  return r;
 }
 
 void write_series_file(const std::string& path, const std::string& case_name, const ObserverResult& r) {

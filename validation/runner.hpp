@@ -23,6 +23,11 @@ struct RunResult {
   long steps = 0;
   std::string checksum;
   ObserverResult observed;
+  /// Moving (water and sand) particles after every step, and the mean over the run: what
+  /// adaptivity saves (validation/adaptive_report.hpp).
+  Series moving_particles{"moving_particles", "time [s]", "moving particles", {}, {}};
+  double moving_particles_mean = 0.0;
+  std::optional<AdaptAccount> adapt;  ///< what split and merge did (adaptive cases)
 };
 
 struct RunSettings {

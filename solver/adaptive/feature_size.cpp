@@ -198,7 +198,9 @@ FeatureSize<D> feature_size(const BackgroundGrid<D>& grid, const std::vector<dou
   const Propagation to_medial =
       propagate<D>(grid, out.medial_axis, std::vector<double>(out.medial_axis.size(), 0.0));
   out.lfs = lfs_at_samples<D>(grid, out.surface, out.medial_axis, to_medial);
-  out.elfs = propagate<D>(grid, out.surface, out.lfs).value;
+  std::vector<double> seed = out.lfs;
+  for (double& s : seed) s = std::min(s, params.lfs_max);
+  out.elfs = propagate<D>(grid, out.surface, seed).value;
   for (double& e : out.elfs) e = std::min(std::max(e, params.elfs_min), params.elfs_max);
   return out;
 }

@@ -15,8 +15,9 @@
 //      sheets and thin gaps);
 //   4. lfs(y) = distance from each surface sample to the nearest medial-axis point (a second
 //      closest-point propagation seeded at the medial-axis points);
-//   5. elfs(x) = min_y (lfs(y) + |x - y|) (a third propagation seeded with lfs on the surface),
-//      clamped to [elfs_min, elfs_max]. Without a medial axis (a half-space) elfs = elfs_max.
+//   5. elfs(x) = min_y (min(lfs(y), lfs_max) + |x - y|) (a third propagation seeded with the
+//      capped lfs on the surface), clamped to [elfs_min, elfs_max]. Without a medial axis (a
+//      half-space) and without a cap, elfs = elfs_max.
 //
 // Verified (tests/test_adaptive.cpp): an analytic slab in 2-D and 3-D (exact to rounding) and a
 // disc (lfs = R within half a cell). Not verified: other curved shapes, corners and wedges (a
@@ -49,6 +50,10 @@ struct FeatureSizeParams {
   double medial_angle = 1.0471975511965976;  ///< ... and directions to them apart by more [rad]
   double elfs_min = 0.0;     ///< clamp of elfs [m] (e.g. alpha * r_min)
   double elfs_max = std::numeric_limits<double>::infinity();  ///< (e.g. beta * r_max)
+  /// Cap of lfs on the surface before it is extended inwards [m]. Infinite: Adams' elfs (a large
+  /// smooth body may be coarse up to its surface). Finite: elfs = min_y (min(lfs(y), lfs_max) +
+  /// |x - y|), so the surface stays fine and particles grow with depth (Persson's size function).
+  double lfs_max = std::numeric_limits<double>::infinity();
 };
 
 template <int D>

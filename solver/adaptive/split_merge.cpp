@@ -16,7 +16,7 @@ namespace {
 using R = FieldRule;
 // One line per ParticleSet field (visit_fields names). A field missing here cannot be split or
 // merged: field_rule throws.
-constexpr std::array<std::pair<std::string_view, FieldRule>, 21> kRules{{
+constexpr std::array<std::pair<std::string_view, FieldRule>, 22> kRules{{
     {"position", R::Position},        {"velocity", R::Intensive},
     {"force", R::Extensive},          {"mass", R::Extensive},
     {"support_radius", R::Size},      {"density", R::Intensive},
@@ -27,7 +27,7 @@ constexpr std::array<std::pair<std::string_view, FieldRule>, 21> kRules{{
     {"absorbed_water", R::Extensive}, {"emit_store", R::Extensive},
     {"saturation", R::Intensive},     {"porosity", R::Intensive},
     {"capillary_potential", R::Intensive}, {"pore_pressure", R::Intensive},
-    {"pore_velocity", R::Intensive},
+    {"pore_velocity", R::Intensive},  {"density_offset", R::Intensive},
 }};
 
 [[noreturn]] void bad_rule(std::string_view name) {

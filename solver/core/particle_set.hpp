@@ -34,6 +34,7 @@ class ParticleSet {
   std::vector<std::uint8_t> phase;   ///< Phase as an integer (VTU-friendly)
   std::vector<std::uint8_t> rough;   ///< boundary particles: 1 = no-slip (rough) wall, 0 = slip
   std::vector<std::int64_t> id;      ///< stable identity, never reused within a run
+  std::vector<double> density_offset;  ///< adaptive runs: decaying density blend [kg/m^3] (adaptive/density_blend.hpp)
   // --- sand (solver/sand/) ----------------------------------------------------------------
   std::vector<std::uint8_t> rigid;   ///< sand: 1 = does not yield (eq 10), 0 = flowing
   std::vector<std::int32_t> cluster; ///< sand: rigid cluster number + 1 of this step, 0 = none
@@ -51,7 +52,7 @@ class ParticleSet {
   void visit_fields(F&& f) {
     f("position", x); f("velocity", v); f("force", force);
     f("mass", m); f("support_radius", h); f("density", rho); f("rest_density", rho0);
-    f("pressure", p); f("phase", phase); f("rough", rough); f("id", id);
+    f("pressure", p); f("phase", phase); f("rough", rough); f("id", id); f("density_offset", density_offset);
     f("rigid", rigid); f("cluster", cluster); f("strain_rate", strain_rate);
     f("absorbed_water", absorbed); f("emit_store", emit_store); f("saturation", saturation);
     f("porosity", porosity); f("capillary_potential", capillary); f("pore_pressure", pore_pressure);

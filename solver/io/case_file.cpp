@@ -135,6 +135,10 @@ CaseSpec load_case(const std::string& path) {
   read_water(o.object("water"), c);
   if (o.has("sand")) read_sand(o.object("sand"), c);
   if (o.has("porous")) c.porous = read_porous(o.object("porous"), c.water.rest_density);
+  if (o.has("adaptive")) {
+    c.adaptive = read_adaptivity(o.object("adaptive"), c.dimension);
+    if (c.adaptive->adapt_sand && !c.has_sand) o.fail("adaptive", "phases names sand but the case has no \"sand\" section");
+  }
   for (JsonObject b : o.objects("blocks")) {
     BlockSpec block;
     block.phase = b.one_of("phase", {"water", "sand", "porous_bed"});

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptive/adaptivity.hpp"
 #include "io/json_reader.hpp"
 #include "io/mesh_spec.hpp"
 #include "io/regression_spec.hpp"
@@ -55,6 +56,7 @@ struct CaseSpec {
   SandParams sand;              ///< the "sand" section (needed by blocks of phase "sand")
   bool has_sand = false;
   std::optional<PorousParams> porous;  ///< the "porous" section (porous flow of sand and porous beds)
+  std::optional<AdaptivitySpec> adaptive;  ///< the "adaptive" section (split and merge, thesis §3.6)
   std::vector<BlockSpec> blocks;
   std::vector<MeshSpec> meshes;  ///< closed OBJ meshes filled with particles (3-D only)
   std::optional<TankSpec> tank;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "adaptive/density_blend.hpp"
 #include "boundary/wall_pressure.hpp"
 #include "porous/porous_flow.hpp"
 #include "porous/porous_setup.hpp"
@@ -40,6 +41,15 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
     else
       derive_porous<3>(*p.porous, spacing, h, lattice_mass<3>(rho0, spacing, h, spec.water.density_kernel),
                        spec.water.density_kernel);
+  }
+  if (spec.adaptive) {
+    p.adaptive = *spec.adaptive;
+    const double h = spec.support_ratio * spacing;
+    const double rho0 = spec.water.rest_density;
+    if (spec.dimension == 2)
+      derive_adaptivity<2>(*p.adaptive, spacing, lattice_mass<2>(rho0, spacing, h, spec.water.density_kernel) / rho0);
+    else
+      derive_adaptivity<3>(*p.adaptive, spacing, lattice_mass<3>(rho0, spacing, h, spec.water.density_kernel) / rho0);
   }
   return p;
 }
@@ -84,7 +94,11 @@ void Simulator<D>::compute_forces() {
   }
   {
     auto t = timers_.time(Stage::Density);
-    compute_density(ps_, nb_, params_.water.density_kernel);
+    compute_densities();
+  }
+  if (params_.adaptive && steps_ % params_.adaptive->interval == 0 && steps_ > 0) adapt();
+  {
+    auto t = timers_.time(Stage::Density);
     const auto n = static_cast<std::int64_t>(ps_.size());
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < n; ++i)
@@ -100,6 +114,12 @@ void Simulator<D>::compute_forces() {
     add_water_forces(ps_, nb_, params_.water, correction_);
     if (has_sand_) compute_sand_forces();
   }
+}
+
+template <int D>
+void Simulator<D>::compute_densities() {
+  compute_density(ps_, nb_, params_.water.density_kernel);
+  if (params_.adaptive) add_density_offsets(ps_);
 }
 
 template <int D>
@@ -128,6 +148,7 @@ void Simulator<D>::integrate(double dt) {
     ps_.v[i] = damping * (ps_.v[i] + dt * acceleration<D>(ps_.force[i], ps_.m[i]));  // symplectic Euler
     ps_.x[i] += dt * ps_.v[i];
   }
+  if (params_.adaptive) decay_density_offsets(ps_, dt, params_.adaptive->blend_time);
   if (has_sand_) move_clusters(ps_, clusters_, motions, dt, damping);
 }
 
@@ -157,6 +178,14 @@ double Simulator<D>::step() {
   time_ += dt;
   ++steps_;
   return dt;
+}
+
+template <int D>
+void Simulator<D>::adapt() {
+  auto t = timers_.time(Stage::Adaptive);
+  adapt_particles<D>(ps_, nb_, *params_.adaptive, time_, adapt_account_);
+  nb_.rebuild(ps_);
+  set_density_offsets(ps_, nb_, params_.water.density_kernel);
 }
 
 template <int D>

@@ -22,6 +22,7 @@ struct SimulationParams {
   WaterParams water;
   SandParams sand;
   std::optional<PorousParams> porous;  ///< porous flow (solver/porous/), derived for the case spacing
+  std::optional<AdaptivitySpec> adaptive;  ///< split and merge (solver/adaptive/), derived for the spacing
   std::vector<double> gravity, domain_min, domain_max;
 
   static SimulationParams from_case(const CaseSpec& spec, double spacing);
@@ -50,12 +51,21 @@ class Simulator {
   double last_dt() const { return last_dt_; }
   void set_last_dt(double dt) { last_dt_ = dt; }
   StageTimers& timers() { return timers_; }
+  /// What adaptivity did so far in this run (zero when the case has no "adaptive" section).
+  const AdaptAccount& adapt_account() const { return adapt_account_; }
 
  private:
   void compute_forces();
+  /// Density of every moving particle: summation (eq 6) plus, in adaptive runs, the particle's
+  /// decaying density offset (solver/adaptive/density_blend.hpp).
+  void compute_densities();
   /// Sand (thesis Fig. 3.3): yield state and frictional stress, then the sand forces.
   void compute_sand_forces();
   void integrate(double dt);
+  /// Split and merge (thesis §3.6) when a pass is due (every params.adaptive->interval steps),
+  /// after the densities of the step: rebuilds the neighbour lists for the new particles and
+  /// sets the density offsets so that no particle's density jumps.
+  void adapt();
   /// Throws BlowUpError naming the first offending particle (lowest index).
   void check_state() const;
 
@@ -72,6 +82,7 @@ class Simulator {
   double time_ = 0.0;
   long steps_ = 0;
   StageTimers timers_;
+  AdaptAccount adapt_account_;
 };
 
 }  // namespace sc

@@ -17,6 +17,7 @@ JsonObject validation_block(const ObserverContext& ctx) {
   JsonObject o(ctx.spec.validation, "/validation", ctx.spec.file);
   o.mark_used("observer");
   o.mark_used("convergence");
+  o.mark_used("uniform_twin");
   return o;
 }
 
