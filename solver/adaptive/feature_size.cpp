@@ -96,16 +96,18 @@ Propagation propagate(const BackgroundGrid<D>& grid, const Points<D>& sources,
                 std::vector<std::int64_t>(grid.size(), -1)};
   using Item = std::pair<double, std::size_t>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  auto relax = [&](std::size_t k, std::size_t s) {
-    const double v = offsets[s] + (grid.node(k) - sources[s]).norm();
+  auto relax = [&](const std::array<int, D>& c, std::size_t s) {
+    Vec<D> x = grid.origin;
+    for (int d = 0; d < D; ++d) x[d] += c[d] * grid.dx;
+    const double v = offsets[s] + (x - sources[s]).norm();
+    const std::size_t k = grid.index(c);
     if (!(v < p.value[k])) return;
     p.value[k] = v;
     p.source[k] = static_cast<std::int64_t>(s);
     queue.emplace(v, k);
   };
   for (std::size_t s = 0; s < sources.size(); ++s)
-    for (int mask = 0; mask < (1 << D); ++mask)
-      relax(grid.index(corner<D>(cell_of<D>(grid, sources[s]), mask)), s);
+    for (int mask = 0; mask < (1 << D); ++mask) relax(corner<D>(cell_of<D>(grid, sources[s]), mask), s);
   const auto offsets_nb = neighbour_offsets<D>();
   while (!queue.empty()) {
     const auto [v, k] = queue.top();
@@ -115,7 +117,7 @@ Propagation propagate(const BackgroundGrid<D>& grid, const Points<D>& sources,
     for (const auto& o : offsets_nb) {
       std::array<int, D> nb = c;
       for (int d = 0; d < D; ++d) nb[d] += o[d];
-      if (in_grid<D>(grid, nb)) relax(grid.index(nb), static_cast<std::size_t>(p.source[k]));
+      if (in_grid<D>(grid, nb)) relax(nb, static_cast<std::size_t>(p.source[k]));
     }
   }
   return p;
