@@ -170,6 +170,36 @@ BOOST_AUTO_TEST_CASE(yield_eq_10_static_sheared_and_cohesion) {
   BOOST_TEST(was_rigid);
 }
 
+BOOST_AUTO_TEST_CASE(yield_eq_10_flow_consistent_surface_holds_the_flowing_stress_of_eq_8) {
+  // [thesis eq. 10] [thesis eq. 8] The flowing stress p I + σ_f (traceless D, 2-D and 3-D) lies on the
+  // flow-consistent yield surface: √3 σ̄ = (3/√2) sin φ σ_m to round-off, so a trial stress 1 %
+  // inside it is rigid and 1 % outside yields; with eq 10 as printed (k = 1) the same flowing stress
+  // lies 3/√2 outside.
+  const double sin_phi = std::sin(30.0 * pi / 180.0), p = 800.0;
+  const double k = yield_strength_factor(YieldSurface::FlowConsistent);
+  BOOST_TEST(k == 3.0 / std::sqrt(2.0), tt::tolerance(1e-15));
+  BOOST_TEST(yield_strength_factor(YieldSurface::ZhuBridson) == 1.0);
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    Mat<3> G;
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) G(a, b) = u(gen);
+    Mat<3> D = strain_rate<3>(G);
+    D -= (D.trace() / 3.0) * Mat<3>::Identity();
+    const Mat<3> flowing = frictional_stress<3>(D, p, sin_phi);
+    const Mat<3> sigma = p * Mat<3>::Identity() + flowing;
+    BOOST_TEST(std::sqrt(3.0) * shear_stress<3>(sigma) == k * sin_phi * mean_stress<3>(sigma), tt::tolerance(1e-12));
+    BOOST_TEST(is_rigid<3>(0.99 * flowing, p, sin_phi, 0.0, k));
+    BOOST_TEST(!is_rigid<3>(1.01 * flowing, p, sin_phi, 0.0, k));
+    BOOST_TEST(!is_rigid<3>(0.99 * flowing, p, sin_phi, 0.0, 1.0));
+    const Mat<2> D2 = D.topLeftCorner<2, 2>() - (D.topLeftCorner<2, 2>().trace() / 2.0) * Mat<2>::Identity();
+    const Mat<2> flowing2 = frictional_stress<2>(D2, p, sin_phi);
+    BOOST_TEST(is_rigid<2>(0.99 * flowing2, p, sin_phi, 0.0, k));
+    BOOST_TEST(!is_rigid<2>(1.01 * flowing2, p, sin_phi, 0.0, k));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(torque_eq_12b_and_cluster_sums_eqs_13_14) {
   // [thesis eq. 12b] uniform gravity on a cluster has no torque about the centre of mass;
   // [thesis eq. 13] [thesis eq. 14] internal central pair forces cancel in the cluster force and

@@ -54,6 +54,8 @@ void read_sand(JsonObject o, CaseSpec& c) {
   s.rigid_clusters = o.boolean("rigid_clusters", true);
   s.rigid_length = o.one_of("rigid_stress_length", {"spacing", "support"}, "spacing") == "spacing"
                        ? RigidStressLength::Spacing : RigidStressLength::Support;
+  s.yield_surface = o.one_of("yield_surface", {"flow_consistent", "zhu_bridson"}, "flow_consistent") == "flow_consistent"
+                        ? YieldSurface::FlowConsistent : YieldSurface::ZhuBridson;
   o.finish();
   c.has_sand = true;
 }

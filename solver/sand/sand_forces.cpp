@@ -36,6 +36,7 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
                        double dt, MatArray<D>& stress) {
   stress.assign(ps.size(), Mat<D>::Zero());
   const double sin_phi = sand.sin_phi();
+  const double strength = yield_strength_factor(sand.yield_surface);
   const auto n = static_cast<std::int64_t>(ps.size());
   VecArrayOf<D> predicted(ps.size());
 #pragma omp parallel for schedule(static)
@@ -49,7 +50,7 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
     const double p = granular_pressure(ps.p[i], ps.rho0[i], gravity, rest_spacing<D>(ps.m[i], ps.rho0[i]));
     const double L = rigid_length(ps, i, sand);
     ps.strain_rate[i] = Dr.norm();
-    ps.rigid[i] = is_rigid<D>(rigid_stress<D>(Dr, ps.rho[i], L, dt), p, sin_phi, sand.cohesion) ? 1 : 0;
+    ps.rigid[i] = is_rigid<D>(rigid_stress<D>(Dr, ps.rho[i], L, dt), p, sin_phi, sand.cohesion, strength) ? 1 : 0;
     if (!ps.rigid[i] || !sand.rigid_clusters) stress[i] = -frictional_stress<D>(Dr, p, sin_phi);
   }
 }

@@ -12,6 +12,12 @@ enum class RigidStressLength {
   Support,  ///< the kernel support h_i (the thesis as printed: erratum 12a, kept as a switch)
 };
 
+/// Which strength the yield test [thesis eq. 10] compares the trial stress with.
+enum class YieldSurface {
+  FlowConsistent,  ///< the strength of the flowing stress of eq 8: √3 σ̄ < (3/√2) sin φ σ_m + c (default)
+  ZhuBridson,      ///< eq 10 as printed (Zhu & Bridson 2005): √3 σ̄ < sin φ σ_m + c (switch)
+};
+
 struct SandParams {
   double rest_density = 2650.0;      ///< ρ0 of sand particles [kg/m^3] (bulk density)
   double friction_angle_deg = 30.0;  ///< φ [deg]; μ_f = sin φ in eqs 8 and 10
@@ -21,6 +27,7 @@ struct SandParams {
   double contact_damping = 0.5;      ///< damping ratio ζ of the Bell et al. 2005 normal contact
   bool rigid_clusters = true;        ///< project non-yielding sand onto rigid motions (eqs 12b-18)
   RigidStressLength rigid_length = RigidStressLength::Spacing;
+  YieldSurface yield_surface = YieldSurface::FlowConsistent;
 
   double sin_phi() const { return std::sin(friction_angle_deg * pi / 180.0); }
   double wall_mu() const { return wall_friction >= 0.0 ? wall_friction : std::tan(friction_angle_deg * pi / 180.0); }

@@ -5,8 +5,10 @@
 //   repose_angle_deg        mean of the two flank angles [deg];
 //   repose_angle_left_deg, repose_angle_right_deg;
 //   rest_energy_ratio       final kinetic energy / its peak.
-// Series: the final surface profile with the two lines at the friction angle through the fits.
+// Series: the final surface profile, the fit window, the two flank fits and the band φ ± 3° of the gate
+// (lines through each fit's centroid).
 #include <cmath>
+#include <numeric>
 
 #include "observer.hpp"
 #include "observers/sand_deposit.hpp"
@@ -54,16 +56,38 @@ class AngleOfReposeObserver : public Observer<D> {
     add_metric(r, limits_, "repose_angle_left_deg", left);
     add_metric(r, limits_, "repose_angle_right_deg", right);
     add_metric(r, limits_, "rest_energy_ratio", peak_energy_ > 0.0 ? last_energy_ / peak_energy_ : NAN);
-    const double t = std::tan(phi_ * pi / 180.0), xp = xs[peak];
-    std::vector<double> ref;
-    for (double x : xs) ref.push_back(std::max(0.0, H - t * std::abs(x - xp)));
-    r.series = {{"surface_sim", "x [m]", "height [m]", xs, top}, {"friction_angle_cone", "x [m]", "height [m]", xs, ref}};
-    r.plots = {{"pile.png", "Sand pile at rest against slopes at the friction angle", "x [m]", "height [m]",
-                {{"surface_sim", "SPH sand surface", "line"}, {"friction_angle_cone", "slopes tan(phi)", "line"}}}};
+    r.series = {{"surface_sim", "x [m]", "height [m]", xs, top}};
+    add_flank_lines(r.series, "left", xl, yl, H, +1.0);
+    add_flank_lines(r.series, "right", xr, yr, H, -1.0);
+    r.plots = {{"pile.png", "Sand pile at rest: flank fits (20-80% of the height) against phi +- 3 deg", "x [m]",
+                "height [m]",
+                {{"surface_sim", "SPH sand surface", "line"},
+                 {"flank_fit_left", "left flank fit", "line"},
+                 {"flank_fit_right", "right flank fit", "line"},
+                 {"band_left", "gate band phi +- 3 deg (left)", "line"},
+                 {"band_right", "gate band phi +- 3 deg (right)", "line"}}}};
     return r;
   }
 
  private:
+  /// Appends the series flank_fit_<flank> (the fitted line of one flank between 20 % and 80 % of the
+  /// height H; rising flank: side = +1, falling: −1) and band_<flank> (the outline of the region
+  /// between the lines at φ − 3° and φ + 3° through the fit's centroid (x̄, ȳ), which lies on the
+  /// least-squares line): the fit is within the gate where it lies inside the band.
+  void add_flank_lines(std::vector<Series>& series, const std::string& flank, const std::vector<double>& x,
+                       const std::vector<double>& y, double H, double side) const {
+    if (x.size() < 2) return;
+    const double xm = std::accumulate(x.begin(), x.end(), 0.0) / x.size();
+    const double ym = std::accumulate(y.begin(), y.end(), 0.0) / y.size();
+    auto at = [&](double h, double slope) { return xm + side * (h - ym) / slope; };
+    const double fit = std::abs(fitted_slope(x, y));
+    const double lo = std::tan((phi_ - 3.0) * pi / 180.0), hi = std::tan((phi_ + 3.0) * pi / 180.0);
+    const double h0 = 0.2 * H, h1 = 0.8 * H;
+    series.push_back({"flank_fit_" + flank, "x [m]", "height [m]", {at(h0, fit), at(h1, fit)}, {h0, h1}});
+    series.push_back({"band_" + flank, "x [m]", "height [m]",
+                      {at(h0, lo), at(h1, lo), at(h1, hi), at(h0, hi), at(h0, lo)}, {h0, h1, h1, h0, h0}});
+  }
+
   double dx_, x0_, floor_, phi_;
   std::size_t columns_;
   double peak_energy_ = 0.0, last_energy_ = 0.0;
