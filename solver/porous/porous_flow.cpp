@@ -15,13 +15,14 @@ namespace sc {
 namespace {
 
 constexpr double kPlacementGap = 0.8;  // new water particles: no particle closer than this many spacings
+constexpr double kContactDistance = 1.5;  // spacings: a porous particle this close to water touches it
 constexpr double kSaturated = 0.99;    // a fixed porous particle with S at least this holds pore-water pressure
 
 template <int D>
 struct Work {
   std::vector<ExchangeSlot<D>> slot;
   std::vector<std::uint8_t> part, porous, exposed, placeable, seepage, contact;
-  std::vector<double> pc, pp, ghost, a, b;
+  std::vector<double> pc, pp, ghost, in, a, b;
   typename ParticleSet<D>::VecArray target;
 };
 
@@ -34,18 +35,23 @@ double spacing_of(const ParticleSet<D>& ps, std::size_t i, const PorousParams& p
 }
 
 /// Porous particles and water particles with a porous neighbour take part; porous particles with
-/// a water neighbour are in contact with free water.
+/// a water neighbour closer than kContactDistance spacings are in contact with free water (the
+/// body's surface row, not the row under it).
 template <int D>
-void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, Work<D>& w) {
+void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, Work<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     w.porous[i] = porous_at(ps, i);
     const bool water = ps.phase_of(i) == Phase::Water;
-    bool near = false;
-    for (const auto j : nb.of(i)) near = near || (water ? porous_at(ps, j) : ps.phase_of(j) == Phase::Water);
-    w.part[i] = w.porous[i] || (water && near);
-    w.contact[i] = w.porous[i] && near;
+    bool near = false, touches = false;
+    for (const auto j : nb.of(i)) {
+      near = near || (water && porous_at(ps, j));
+      touches = touches || (!water && ps.phase_of(j) == Phase::Water &&
+                            (ps.x[j] - ps.x[i]).norm() < kContactDistance * spacing_of(ps, i, p));
+    }
+    w.part[i] = w.porous[i] || near;
+    w.contact[i] = w.porous[i] && touches;
   }
 }
 
@@ -220,7 +226,22 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
     }
     w.a[i] = outflow_scale(w.slot[i].mass, out, dt);
     w.b[i] = inflow_scale(w.slot[i].mass, w.slot[i].capacity, in, dt);
+    w.in[i] = in;
   }
+  // Second inflow limit: the room also counts what the particle surely sends out in the step, its
+  // outflow under the first limits (outflows only grow when the limits are relaxed, so the bound
+  // m_p <= capacity still holds); without it a saturated particle in a steady flow stays short of
+  // S = 1 by one step's inflow, which costs (β + 1) times that in relative permeability.
+  std::vector<double> relaxed(ps.size(), 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!w.part[i]) continue;
+    double out = w.ghost[i] * w.a[i];
+    std::size_t k = start[i];
+    for (const auto j : nb.of(i)) out += to[k++] * std::min(w.a[i], w.b[j]);
+    relaxed[i] = inflow_scale(w.slot[i].mass - dt * out, w.slot[i].capacity, w.in[i], dt);
+  }
+  w.b.swap(relaxed);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
@@ -346,9 +367,9 @@ PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
   Work<D> w;
   w.slot.assign(n, ExchangeSlot<D>{});
   w.part.assign(n, 0); w.porous.assign(n, 0); w.exposed.assign(n, 0); w.placeable.assign(n, 0); w.seepage.assign(n, 0); w.contact.assign(n, 0);
-  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.a, &w.b}) v->assign(n, 0.0);
+  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b}) v->assign(n, 0.0);
   w.target.assign(n, Vec<D>::Zero());
-  mark_participants(ps, nb, w);
+  mark_participants(ps, nb, params, w);
   fill_slots(ps, params, gravity, dt, w);
   set_contact_pressure(ps, nb, params, gravity, w);
   pore_velocities(ps, nb, params, gravity, w);

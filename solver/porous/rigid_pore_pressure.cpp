@@ -17,6 +17,7 @@ namespace {
 
 constexpr double kRegularisation = 1e-9;
 constexpr double kTolerance = 1e-10;
+constexpr double kColumnGap = 1.5;  // spacings of empty height that end a water column
 
 }  // namespace
 
@@ -34,10 +35,12 @@ std::vector<double> water_column_pressure(const ParticleSet<D>& ps, double spaci
   const double per_mass = fluid_density * gravity * spacing / full_mass;
   for (auto& [cell, members] : columns) {
     std::sort(members.begin(), members.end(), std::greater<>());
-    double above = 0.0;
+    double above = 0.0, last = INFINITY;
     for (const auto& [z, i] : members) {
+      if (last - z > kColumnGap * spacing) above = 0.0;  // a gap: the water above does not rest on this
       P[i] = per_mass * (above + 0.5 * ps.m[i]);
       above += ps.m[i];
+      last = z;
     }
   }
   return P;

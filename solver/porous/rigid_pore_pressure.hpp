@@ -30,7 +30,8 @@ enum class PressureRole : std::uint8_t {
 /// P_j = ρ^f |g| s (Σ_{k above j} m_k + m_j/2) / m0, summing the water particles k in the same
 /// vertical column of width s (the spacing; cells of the horizontal axes, gravity along the last
 /// axis); a full particle (mass m0, the lattice mass that makes the SPH density ρ^f) is one
-/// spacing of water height, a shrunken one a fraction of it. Used instead of the weakly compressible SPH pressure where water meets a rigid porous
+/// spacing of water height, a shrunken one a fraction of it. A gap of more than 1.5 spacings
+/// ends a column (water dripping under a porous bed does not carry the pond above the bed). Used instead of the weakly compressible SPH pressure where water meets a rigid porous
 /// body: the pore water is incompressible and feels the pond's weight, not the acoustic noise of
 /// the Tait pressure (a few hundred Pa at c = 15 m/s, as much as the head of a shallow pond).
 /// Zero for particles that are not water.
