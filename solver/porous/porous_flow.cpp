@@ -155,23 +155,30 @@ void pore_velocities(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porou
   }
 }
 
-/// No particle of i's neighbourhood (or none but water, if !water_counts) lies within
-/// kPlacementGap spacings of `place`.
+/// Which water particles occupy a place (place_free).
+enum class WaterBlocks { All, Staying, None };
+
+/// No particle of i's neighbourhood lies within kPlacementGap spacings of `place`, counting the
+/// water particles as `water` says: all, only those not moving away along `away`, or none.
 template <int D>
 bool place_free(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i, const Vec<D>& place, double s,
-                bool water_counts) {
+                WaterBlocks water, const Vec<D>& away = Vec<D>::Zero()) {
   bool free = true;
-  for (const auto j : nb.of(i))
-    free = free && ((!water_counts && ps.phase_of(j) == Phase::Water) || (ps.x[j] - place).norm() >= kPlacementGap * s);
+  for (const auto j : nb.of(i)) {
+    const bool is_water = ps.phase_of(j) == Phase::Water;
+    const bool counts = !is_water || water == WaterBlocks::All || (water == WaterBlocks::Staying && ps.v[j].dot(away) <= 0.0);
+    free = free && (!counts || (ps.x[j] - place).norm() >= kPlacementGap * s);
+  }
   return free;
 }
 
 /// Seepage into empty space: the target one spacing along v_p and the flow a full half-space
-/// of receivers would take there (zero when the suction holds the water or a solid or porous
-/// particle fills the place; water dripping there does not stop the seepage, it only delays the
-/// creation of the new particle, w.placeable). A particle with such an open place one spacing
-/// along v_p or below it (along g) is on a seepage face (w.seepage: its pore-water pressure is
-/// the atmosphere's, pressure_roles), whatever v_p is now.
+/// of receivers would take there (zero when the suction holds the water or the place is occupied;
+/// water there that moves away along v_p, such as the particle emitted in the previous steps,
+/// does not stop the seepage: the store waits until the place is free, w.placeable). A particle
+/// with a place one spacing along v_p or below it (along g) that holds no solid or porous particle
+/// (water dripping there does not count) is on a seepage face (w.seepage: its pore-water pressure
+/// is the atmosphere's, pressure_roles), whatever v_p is now.
 template <int D>
 void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
               Work<D>& w) {
@@ -186,13 +193,13 @@ void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porous
     const double speed = ps.pore_velocity[i].norm();
     const double s = spacing_of(ps, i, p);
     if (ps.capillary[i] > p.fluid_density * g.norm() * s) continue;
-    const bool open_below = g.norm() > 0.0 && place_free(ps, nb, i, Vec<D>(ps.x[i] + (s / g.norm()) * g), s, false);
+    const bool open_below = g.norm() > 0.0 && place_free(ps, nb, i, Vec<D>(ps.x[i] + (s / g.norm()) * g), s, WaterBlocks::None);
     w.seepage[i] = open_below;
     if (speed <= 0.0) continue;
     w.target[i] = ps.x[i] + (s / speed) * ps.pore_velocity[i];
-    w.exposed[i] = place_free(ps, nb, i, w.target[i], s, false);
-    w.placeable[i] = w.exposed[i] && place_free(ps, nb, i, w.target[i], s, true);
-    w.seepage[i] = w.seepage[i] || w.exposed[i];
+    w.exposed[i] = place_free(ps, nb, i, w.target[i], s, WaterBlocks::Staying, ps.pore_velocity[i]);
+    w.placeable[i] = w.exposed[i] && place_free(ps, nb, i, w.target[i], s, WaterBlocks::All);
+    w.seepage[i] = w.seepage[i] || place_free(ps, nb, i, w.target[i], s, WaterBlocks::None);
     if (w.exposed[i] && ps.absorbed[i] > 0.0) w.ghost[i] = w.slot[i].flow_factor * ps.absorbed[i] * speed / s;
   }
 }
@@ -325,8 +332,8 @@ std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const P
 }
 
 /// Creates water particles from full emission stores at targets free of any particle (a store
-/// whose target holds dripping water waits); returns stores of particles that are no longer
-/// exposed to m_p (as far as they have room). Serial, index order.
+/// whose target still holds departing water waits); returns stores of particles that are no
+/// longer exposed to m_p (as far as they have room). Serial, index order.
 template <int D>
 std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const Work<D>& w) {
   std::size_t count = 0;
