@@ -22,6 +22,8 @@
 #include "reference/analytic/green_ampt.hpp"
 #include "scene/scene_builder.hpp"
 #include "simulator/simulator.hpp"
+#include "sph/density.hpp"
+#include "support/lattice.hpp"
 
 using namespace sc;
 
@@ -266,6 +268,31 @@ BOOST_AUTO_TEST_CASE(effective_pressure_eq_32_weakens_wet_sand) {
     prev = pe;
   }
   BOOST_TEST(effective_pressure(1000.0, 1.0, 2000.0, 1.0) == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(wet_sand_friction_uses_the_effective_pressure_eq_32) {
+  // [thesis eq. 32] fed into the sand: in simple shear the frictional stress of eq 8 is
+  // proportional to the pressure, so at S = 1/2 with η k^p = 3000 Pa and p = 4000 Pa it is p'/p = 5/8 of the dry one,
+  // and dry sand (S = 0) is unchanged by η k^p.
+  ParticleSet<2> ps = test::square_lattice(12, kDx, 2.0, 2650.0, Phase::Sand);
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  compute_density(ps, nb, kernel::DensityKernel::Spiky);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    ps.v[i] = Vec<2>(2.0 * ps.x[i][1], 0.0);  // simple shear
+    ps.p[i] = 4000.0;
+  }
+  SandParams sand;
+  sand.rigid_clusters = false;
+  const std::size_t c = static_cast<std::size_t>(6 * 12 + 6);
+  MatArray<2> dry, dry_kp, wet;
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, dry);
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, dry_kp, 1.0, 3000.0);
+  for (auto& S : ps.saturation) S = 0.5;
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, wet, 1.0, 3000.0);
+  BOOST_TEST(dry[c].norm() > 0.0);
+  BOOST_TEST((dry_kp[c] - dry[c]).norm() == 0.0);
+  BOOST_TEST(wet[c].norm() / dry[c].norm() == (4000.0 - 0.5 * 3000.0) / 4000.0, boost::test_tools::tolerance(1e-12));
 }
 
 BOOST_AUTO_TEST_CASE(water_balance_over_1000_steps_with_absorption_and_emission) {
