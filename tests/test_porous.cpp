@@ -13,6 +13,7 @@
 #include "porous/diffusion.hpp"
 #include "porous/effective_stress.hpp"
 #include "porous/pore_pressure.hpp"
+#include "porous/rigid_pore_pressure.hpp"
 #include "porous/porous_flow.hpp"
 #include "porous/porous_setup.hpp"
 #include "porous/saturation.hpp"
@@ -21,6 +22,8 @@
 #include "reference/analytic/green_ampt.hpp"
 #include "scene/scene_builder.hpp"
 #include "simulator/simulator.hpp"
+#include "sph/density.hpp"
+#include "support/lattice.hpp"
 
 using namespace sc;
 
@@ -204,6 +207,50 @@ BOOST_AUTO_TEST_CASE(limiters_eq_30_keep_mass_and_saturation_in_bounds) {
   BOOST_TEST(outflow_scale(mass, 1e-6, dt) == 1.0);
 }
 
+BOOST_AUTO_TEST_CASE(rigid_pore_pressure_is_linear_in_a_permeameter_and_hydrostatic_on_a_floor) {
+  // Incompressible pore water in a rigid saturated column (Darcy, [thesis eq. 26] with ∇·q = 0):
+  // pressures 2000 Pa at the top row and 0 at the bottom row give the linear profile in between
+  // (the piezometric pressure is harmonic; the no-flow sides do not bend it), to 1e-6 relative.
+  // With the bottom rows absent (a no-flow floor) the column is hydrostatic, dP/dz = −ρ^f g.
+  const PorousParams p = test_params();
+  const Vec<2> g(0.0, -9.81);
+  for (const bool floor : {false, true}) {
+    ParticleSet<2> ps;
+    add_block(ps, p, Phase::Boundary, {0.0, 0.0}, {0.1, 0.2}, 1.0);
+    NeighbourGrid<2> nb;
+    nb.rebuild(ps);
+    std::vector<PressureRole> role(ps.size(), PressureRole::Unknown);
+    std::vector<double> P(ps.size(), 0.0);
+    const double top = 0.195, bottom = 0.005;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (std::abs(ps.x[i][1] - top) < 1e-9) { role[i] = PressureRole::Prescribed; P[i] = 2000.0; }
+      if (std::abs(ps.x[i][1] - bottom) < 1e-9) role[i] = floor ? PressureRole::None : PressureRole::Prescribed;
+    }
+    solve_harmonic_pressure(ps, nb, role, kRho, g, P);
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (role[i] != PressureRole::Unknown) continue;
+      const double z = ps.x[i][1];
+      const double exact = floor ? 2000.0 + kRho * 9.81 * (top - z) : 2000.0 * (z - bottom) / (top - bottom);
+      BOOST_TEST(P[i] == exact, boost::test_tools::tolerance(1e-6));
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(pond_pressure_is_the_weight_of_the_water_column) {
+  // A column of n full water particles over a porous particle: the k-th from the top carries
+  // ρ^f g s (k + 1/2); a second column separated by a gap carries only itself.
+  const PorousParams p = test_params();
+  ParticleSet<2> ps;
+  add_block(ps, p, Phase::Water, {0.0, 0.0}, {0.01, 0.05}, 0.0);
+  add_block(ps, p, Phase::Water, {0.0, 0.08}, {0.01, 0.1}, 0.0);
+  const std::vector<double> P = water_column_pressure(ps, kDx, p.water_mass, kRho, 9.81);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const double top = ps.x[i][1] > 0.07 ? 0.095 : 0.045;
+    const double k = std::round((top - ps.x[i][1]) / kDx);
+    BOOST_TEST(P[i] == kRho * 9.81 * kDx * (k + 0.5), boost::test_tools::tolerance(1e-12));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(wet_rest_density_eq_31) {
   // [thesis eq. 31] dry gives ρ0; a saturated bulk gives ρ0 + φ ρ^f.
   BOOST_TEST(wet_rest_density(1600.0, 0.0, 0.4, 1000.0) == 1600.0);
@@ -221,6 +268,31 @@ BOOST_AUTO_TEST_CASE(effective_pressure_eq_32_weakens_wet_sand) {
     prev = pe;
   }
   BOOST_TEST(effective_pressure(1000.0, 1.0, 2000.0, 1.0) == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(wet_sand_friction_uses_the_effective_pressure_eq_32) {
+  // [thesis eq. 32] fed into the sand: in simple shear the frictional stress of eq 8 is
+  // proportional to the pressure, so at S = 1/2 with η k^p = 3000 Pa and p = 4000 Pa it is p'/p = 5/8 of the dry one,
+  // and dry sand (S = 0) is unchanged by η k^p.
+  ParticleSet<2> ps = test::square_lattice(12, kDx, 2.0, 2650.0, Phase::Sand);
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  compute_density(ps, nb, kernel::DensityKernel::Spiky);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    ps.v[i] = Vec<2>(2.0 * ps.x[i][1], 0.0);  // simple shear
+    ps.p[i] = 4000.0;
+  }
+  SandParams sand;
+  sand.rigid_clusters = false;
+  const std::size_t c = static_cast<std::size_t>(6 * 12 + 6);
+  MatArray<2> dry, dry_kp, wet;
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, dry);
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, dry_kp, 1.0, 3000.0);
+  for (auto& S : ps.saturation) S = 0.5;
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, wet, 1.0, 3000.0);
+  BOOST_TEST(dry[c].norm() > 0.0);
+  BOOST_TEST((dry_kp[c] - dry[c]).norm() == 0.0);
+  BOOST_TEST(wet[c].norm() / dry[c].norm() == (4000.0 - 0.5 * 3000.0) / 4000.0, boost::test_tools::tolerance(1e-12));
 }
 
 BOOST_AUTO_TEST_CASE(water_balance_over_1000_steps_with_absorption_and_emission) {

@@ -18,6 +18,10 @@ struct ExchangeSlot {
   double flow_factor = 0;  ///< S^β of eq 29 (1 for water particles, which give water as saturated)
   double volume = 0;     ///< V [m^D] as a receiver (a full particle's volume for water)
   double h = 0;          ///< support radius [m]
+  double contact_speed = 0;  ///< > 0 for water in contact with a porous body: it gives at this speed in
+                             ///< every direction instead of along v_p (see pair_flow)
+  double height = 0;         ///< x·(−ĝ): height against gravity [m]
+  bool draws_up = false;     ///< a porous receiver whose suction lifts contact water (see pair_flow)
 };
 
 /// Mass flow from `src` to `dst` before limiting [thesis eq. 28] and [thesis eq. 29], in the
@@ -29,6 +33,16 @@ struct ExchangeSlot {
 /// eq 28 (as Lenaerts' eq 8) has no outflow term (not conservative) and lacks a length
 /// (kg/(m s), not kg/s), which L_ij supplies. λ is calibrated (flux_length_factor) so that a
 /// uniform pore velocity on a lattice carries exactly the Darcy mass flux ρ^f φ S^{β+1} v_p.
+/// Water in contact (src.contact_speed > 0, ours [I]): free water touching a porous body is the
+/// pond at the body's surface, which keeps the surface saturated (the boundary condition of
+/// ponded infiltration and of a permeameter's inflow face). It gives at contact_speed (one
+/// spacing per step, more than any receiver can take) in every direction; the receiver's
+/// free-volume limiter then takes exactly what the surface particle has room for, so the
+/// infiltration rate is set by the porous body (Darcy) and not by the size or the eq 27 pore
+/// velocity of the water particle. Contact water never flows up into a receiver above it unless
+/// the receiver's suction exceeds one spacing of water head (draws_up): the water that drips
+/// from a seepage face is not drawn back, as the seepage face itself only lets water leave into
+/// air below that suction (porous_flow.hpp).
 /// Computed by both particles of a pair from the same arguments, so both see the same bits.
 template <int D>
 inline double pair_flow(const ExchangeSlot<D>& src, const ExchangeSlot<D>& dst, double lambda) {
@@ -36,7 +50,8 @@ inline double pair_flow(const ExchangeSlot<D>& src, const ExchangeSlot<D>& dst, 
   const double r = d.norm();
   const double hbar = 0.5 * (src.h + dst.h);
   if (r <= 0.0 || r >= hbar || src.mass <= 0.0) return 0.0;
-  const double u = src.pore_velocity.dot(d) / r;
+  if (src.contact_speed > 0.0 && dst.height > src.height && !dst.draws_up) return 0.0;
+  const double u = src.contact_speed > 0.0 ? src.contact_speed : src.pore_velocity.dot(d) / r;
   if (u <= 0.0) return 0.0;
   return lambda * hbar * u * src.flow_factor * src.mass * dst.volume * kernel::viscosity_laplacian<D>(r, hbar);
 }

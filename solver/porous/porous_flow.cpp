@@ -7,6 +7,7 @@
 #include "porous/darcy.hpp"
 #include "porous/diffusion.hpp"
 #include "porous/pore_pressure.hpp"
+#include "porous/rigid_pore_pressure.hpp"
 #include "porous/saturation.hpp"
 
 namespace sc {
@@ -14,12 +15,14 @@ namespace sc {
 namespace {
 
 constexpr double kPlacementGap = 0.8;  // new water particles: no particle closer than this many spacings
+constexpr double kContactDistance = 1.5;  // spacings: a porous particle this close to water touches it
+constexpr double kSaturated = 0.99;    // a fixed porous particle with S at least this holds pore-water pressure
 
 template <int D>
 struct Work {
   std::vector<ExchangeSlot<D>> slot;
-  std::vector<std::uint8_t> part, porous, exposed;
-  std::vector<double> pc, pp, ghost, out, in, a, b;
+  std::vector<std::uint8_t> part, porous, exposed, placeable, seepage, contact;
+  std::vector<double> pc, pp, ghost, in, a, b;
   typename ParticleSet<D>::VecArray target;
 };
 
@@ -31,24 +34,54 @@ double spacing_of(const ParticleSet<D>& ps, std::size_t i, const PorousParams& p
   return ps.phase_of(i) == Phase::Boundary ? p.spacing : std::pow(ps.volume(i), 1.0 / D);
 }
 
-/// Porous particles and water particles with a porous neighbour take part.
+/// Porous particles and water particles with a porous neighbour take part; porous particles with
+/// a water neighbour closer than kContactDistance spacings are in contact with free water (the
+/// body's surface row, not the row under it).
 template <int D>
-void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, Work<D>& w) {
+void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, Work<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     w.porous[i] = porous_at(ps, i);
-    bool near = false;
-    if (ps.phase_of(i) == Phase::Water)
-      for (const auto j : nb.of(i)) near = near || porous_at(ps, j);
+    const bool water = ps.phase_of(i) == Phase::Water;
+    bool near = false, touches = false;
+    for (const auto j : nb.of(i)) {
+      near = near || (water && porous_at(ps, j));
+      touches = touches || (!water && ps.phase_of(j) == Phase::Water &&
+                            (ps.x[j] - ps.x[i]).norm() < kContactDistance * spacing_of(ps, i, p));
+    }
     w.part[i] = w.porous[i] || near;
+    w.contact[i] = w.porous[i] && touches;
   }
+}
+
+/// Pore-water pressure of fixed (rigid) porous particles, ours [I]. Eq 25 answers only to skeleton
+/// compression, so a rigid skeleton would have P^p = 0 and, with S <= 1 capping the content,
+/// Darcy flow through it would be driven by gravity alone (q = K whatever the pond depth). In a
+/// rigid saturated skeleton the pore water is incompressible and its pressure is what keeps the
+/// flow divergence-free (solve_harmonic_pressure). The conditions:
+/// - in contact with free water (a water neighbour): the pond's pressure (pond_pressure: the
+///   weight of the water columns next to it, carried to it hydrostatically);
+/// - at a seepage face (empty space below or along v_p, exposure): the atmosphere's, 0;
+/// - unsaturated (S < kSaturated): 0, the pore water being at the capillary suction −P^c (eq 23);
+/// - moving (deformable) sand: Lenaerts' eq 25;
+/// - saturated, fixed, none of the above: harmonic, solved.
+template <int D>
+std::vector<PressureRole> pressure_roles(const ParticleSet<D>& ps, const Work<D>& w) {
+  std::vector<PressureRole> role(ps.size(), PressureRole::None);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (!w.porous[i]) continue;
+    const bool saturated = ps.absorbed[i] + ps.emit_store[i] >= kSaturated * w.slot[i].capacity;
+    const bool solved = ps.phase_of(i) == Phase::Boundary && !w.contact[i] && !w.seepage[i] && saturated;
+    role[i] = solved ? PressureRole::Unknown : PressureRole::Prescribed;
+  }
+  return role;
 }
 
 /// Saturation (eq 21), porosity (eq 24), capillary potential (eq 23) and pore pressure (eq 25)
 /// of porous particles; the saturated-porous view of water particles.
 template <int D>
-void fill_slots(ParticleSet<D>& ps, const PorousParams& p, Work<D>& w) {
+void fill_slots(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, double dt, Work<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
   const double rho_f = p.fluid_density;
 #pragma omp parallel for schedule(static)
@@ -57,11 +90,14 @@ void fill_slots(ParticleSet<D>& ps, const PorousParams& p, Work<D>& w) {
     ExchangeSlot<D>& s = w.slot[i];
     s.x = ps.x[i];
     s.h = ps.h[i];
+    s.height = g.norm() > 0.0 ? -ps.x[i].dot(g) / g.norm() : 0.0;
     if (!w.porous[i]) {
       s.mass = ps.m[i];
       s.capacity = p.water_mass;
       s.flow_factor = 1.0;
       s.volume = p.water_mass / rho_f;
+      s.contact_speed = p.spacing / dt;
+      s.flow_factor = ps.m[i] > 0.0 ? p.water_mass / ps.m[i] : 0.0;  // gives as a full particle
       continue;
     }
     const bool fixed = ps.phase_of(i) == Phase::Boundary;
@@ -70,36 +106,79 @@ void fill_slots(ParticleSet<D>& ps, const PorousParams& p, Work<D>& w) {
     const double S = saturation(ps.absorbed[i], rho_f, ps.porosity[i], V);
     ps.saturation[i] = S;
     ps.capillary[i] = capillary_potential(S, p.capillary_constant, p.capillary_exponent);
-    ps.pore_pressure[i] = fixed ? 0.0 : pore_pressure(p.pore_stiffness, S, ps.rho[i], ps.rho0[i], p.pore_gamma,
-                                                      p.thesis_pore_pressure_ratio);
+    if (!fixed)
+      ps.pore_pressure[i] = pore_pressure(p.pore_stiffness, S, ps.rho[i], ps.rho0[i], p.pore_gamma,
+                                          p.thesis_pore_pressure_ratio);
     w.pc[i] = ps.capillary[i];
     w.pp[i] = ps.pore_pressure[i];
     s.mass = ps.absorbed[i];
     s.capacity = rho_f * ps.porosity[i] * V;
     s.flow_factor = std::pow(S, p.saturation_exponent);
     s.volume = V;
+    s.draws_up = ps.capillary[i] > rho_f * g.norm() * spacing_of(ps, i, p);
   }
 }
 
-/// Pore velocity (eq 27) from the gradients (eq 22) of capillary potential and pore pressure.
+/// The pond's pressure at fixed porous particles in contact with water (pressure_roles).
+template <int D>
+void set_contact_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
+                          const Work<D>& w) {
+  const std::vector<double> column = water_column_pressure(ps, p.spacing, p.water_mass, p.fluid_density, g.norm());
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
+    if (w.contact[i] && ps.phase_of(i) == Phase::Boundary)
+      ps.pore_pressure[i] = pond_pressure(ps, nb, column, i, p.fluid_density, g);
+}
+
+/// Pore velocity (eq 27) of porous particles from the gradients (eq 22) of the capillary potential
+/// (water in contact counts as saturated, P^c = 0) and of the pore pressure (over porous particles
+/// only: the pond's pressure enters through the particles in contact). Water particles give by
+/// contact (pair_flow) and have no pore velocity.
 template <int D>
 void pore_velocities(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
                      Work<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
-  const bool pore = p.pore_stiffness != 0.0, capillary = p.capillary_constant != 0.0;
+  const bool capillary = p.capillary_constant != 0.0;
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
+    if (!w.porous[i]) {
+      ps.pore_velocity[i] = Vec<D>::Zero();
+      continue;
+    }
     const Vec<D> grad_c = capillary ? porous_gradient(ps, nb, w.pc, w.part, i, p.gradient) : Vec<D>::Zero();
-    const Vec<D> grad_p = pore ? porous_gradient(ps, nb, w.pp, w.part, i, p.gradient) : Vec<D>::Zero();
-    const double phi = w.porous[i] ? ps.porosity[i] : 1.0;
-    ps.pore_velocity[i] = pore_velocity<D>(p.permeability, p.fluid_viscosity, phi, grad_p, grad_c, p.fluid_density, g);
+    const Vec<D> grad_p = porous_gradient(ps, nb, w.pp, w.porous, i, p.gradient);
+    ps.pore_velocity[i] = pore_velocity<D>(p.permeability, p.fluid_viscosity, ps.porosity[i], grad_p, grad_c,
+                                           p.fluid_density, g);
     w.slot[i].pore_velocity = ps.pore_velocity[i];
   }
 }
 
+/// Which water particles occupy a place (place_free).
+enum class WaterBlocks { All, Staying, None };
+
+/// No particle of i's neighbourhood lies within kPlacementGap spacings of `place`, counting the
+/// water particles as `water` says: all, only those not moving away along `away`, or none.
+template <int D>
+bool place_free(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i, const Vec<D>& place, double s,
+                WaterBlocks water, const Vec<D>& away = Vec<D>::Zero()) {
+  bool free = true;
+  for (const auto j : nb.of(i)) {
+    const bool is_water = ps.phase_of(j) == Phase::Water;
+    const bool counts = !is_water || water == WaterBlocks::All || (water == WaterBlocks::Staying && ps.v[j].dot(away) <= 0.0);
+    free = free && (!counts || (ps.x[j] - place).norm() >= kPlacementGap * s);
+  }
+  return free;
+}
+
 /// Seepage into empty space: the target one spacing along v_p and the flow a full half-space
-/// of receivers would take there (zero when the place is occupied or the suction holds the water).
+/// of receivers would take there (zero when the suction holds the water or the place is occupied;
+/// water there that moves away along v_p, such as the particle emitted in the previous steps,
+/// does not stop the seepage: the store waits until the place is free, w.placeable). A particle
+/// with a place one spacing along v_p or below it (along g) that holds no solid or porous particle
+/// (water dripping there does not count) is on a seepage face (w.seepage: its pore-water pressure
+/// is the atmosphere's, pressure_roles), whatever v_p is now.
 template <int D>
 void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
               Work<D>& w) {
@@ -107,16 +186,21 @@ void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porous
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     w.exposed[i] = 0;
+    w.placeable[i] = 0;
+    w.seepage[i] = 0;
     w.ghost[i] = 0.0;
     if (!w.porous[i]) continue;
     const double speed = ps.pore_velocity[i].norm();
     const double s = spacing_of(ps, i, p);
-    if (speed <= 0.0 || ps.capillary[i] > p.fluid_density * g.norm() * s) continue;
+    if (ps.capillary[i] > p.fluid_density * g.norm() * s) continue;
+    const bool open_below = g.norm() > 0.0 && place_free(ps, nb, i, Vec<D>(ps.x[i] + (s / g.norm()) * g), s, WaterBlocks::None);
+    w.seepage[i] = open_below;
+    if (speed <= 0.0) continue;
     w.target[i] = ps.x[i] + (s / speed) * ps.pore_velocity[i];
-    bool free = true;
-    for (const auto j : nb.of(i)) free = free && (ps.x[j] - w.target[i]).norm() >= kPlacementGap * s;
-    w.exposed[i] = free;
-    if (free && ps.absorbed[i] > 0.0) w.ghost[i] = w.slot[i].flow_factor * ps.absorbed[i] * speed / s;
+    w.exposed[i] = place_free(ps, nb, i, w.target[i], s, WaterBlocks::Staying, ps.pore_velocity[i]);
+    w.placeable[i] = w.exposed[i] && place_free(ps, nb, i, w.target[i], s, WaterBlocks::All);
+    w.seepage[i] = w.seepage[i] || place_free(ps, nb, i, w.target[i], s, WaterBlocks::None);
+    if (w.exposed[i] && ps.absorbed[i] > 0.0) w.ghost[i] = w.slot[i].flow_factor * ps.absorbed[i] * speed / s;
   }
 }
 
@@ -149,7 +233,22 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
     }
     w.a[i] = outflow_scale(w.slot[i].mass, out, dt);
     w.b[i] = inflow_scale(w.slot[i].mass, w.slot[i].capacity, in, dt);
+    w.in[i] = in;
   }
+  // Second inflow limit: the room also counts what the particle surely sends out in the step, its
+  // outflow under the first limits (outflows only grow when the limits are relaxed, so the bound
+  // m_p <= capacity still holds); without it a saturated particle in a steady flow stays short of
+  // S = 1 by one step's inflow, which costs (β + 1) times that in relative permeability.
+  std::vector<double> relaxed(ps.size(), 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!w.part[i]) continue;
+    double out = w.ghost[i] * w.a[i];
+    std::size_t k = start[i];
+    for (const auto j : nb.of(i)) out += to[k++] * std::min(w.a[i], w.b[j]);
+    relaxed[i] = inflow_scale(w.slot[i].mass - dt * out, w.slot[i].capacity, w.in[i], dt);
+  }
+  w.b.swap(relaxed);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
@@ -168,6 +267,17 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
       ps.m[i] = m;
     }
   }
+}
+
+/// Pore-water pressure of fixed porous particles for the next step (pressure_roles).
+template <int D>
+void update_rigid_pore_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
+                                const Work<D>& w) {
+  const std::vector<PressureRole> role = pressure_roles(ps, w);
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (role[i] == PressureRole::Prescribed && ps.phase_of(i) == Phase::Boundary && !w.contact[i])
+      ps.pore_pressure[i] = 0.0;
+  solve_harmonic_pressure(ps, nb, role, p.fluid_density, g, ps.pore_pressure);
 }
 
 /// The literal eq 28 (switch "lenaerts_literal"): each particle integrates its own rate and is
@@ -221,8 +331,9 @@ std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const P
   return count;
 }
 
-/// Creates water particles from full emission stores at free targets; returns stores of
-/// particles that are no longer exposed to m_p (as far as they have room). Serial, index order.
+/// Creates water particles from full emission stores at targets free of any particle (a store
+/// whose target still holds departing water waits); returns stores of particles that are no
+/// longer exposed to m_p (as far as they have room). Serial, index order.
 template <int D>
 std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const Work<D>& w) {
   std::size_t count = 0;
@@ -230,15 +341,15 @@ std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const Work<D>& w
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (!w.porous[i] || ps.emit_store[i] <= 0.0) continue;
     const double s = spacing_of(ps, i, p);
-    bool free = w.exposed[i];
-    for (const Vec<D>& x : placed) free = free && (x - w.target[i]).norm() >= kPlacementGap * s;
-    if (!free) {
+    if (!w.exposed[i]) {
       const double back = std::min(ps.emit_store[i], std::max(0.0, w.slot[i].capacity - ps.absorbed[i]));
       ps.absorbed[i] += back;
       ps.emit_store[i] -= back;
       continue;
     }
-    if (ps.emit_store[i] < p.create_fraction * p.water_mass) continue;
+    bool free = w.placeable[i];
+    for (const Vec<D>& x : placed) free = free && (x - w.target[i]).norm() >= kPlacementGap * s;
+    if (!free || ps.emit_store[i] < p.create_fraction * p.water_mass) continue;
     ParticleSet<D>& add = ps.additions();
     const std::size_t k = add.append();
     add.x[k] = w.target[i];
@@ -262,11 +373,12 @@ PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
   const std::size_t n = ps.size();
   Work<D> w;
   w.slot.assign(n, ExchangeSlot<D>{});
-  w.part.assign(n, 0); w.porous.assign(n, 0); w.exposed.assign(n, 0);
-  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.out, &w.in, &w.a, &w.b}) v->assign(n, 0.0);
+  w.part.assign(n, 0); w.porous.assign(n, 0); w.exposed.assign(n, 0); w.placeable.assign(n, 0); w.seepage.assign(n, 0); w.contact.assign(n, 0);
+  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b}) v->assign(n, 0.0);
   w.target.assign(n, Vec<D>::Zero());
-  mark_participants(ps, nb, w);
-  fill_slots(ps, params, w);
+  mark_participants(ps, nb, params, w);
+  fill_slots(ps, params, gravity, dt, w);
+  set_contact_pressure(ps, nb, params, gravity, w);
   pore_velocities(ps, nb, params, gravity, w);
   PorousStepCounts counts;
   if (params.diffusion == PorousDiffusion::LenaertsLiteral) {
@@ -274,6 +386,7 @@ PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
   } else {
     exposure(ps, nb, params, gravity, w);
     diffuse_conserving(ps, nb, params, dt, w);
+    update_rigid_pore_pressure(ps, nb, params, gravity, w);
     counts.created = emit_new(ps, params, w);
   }
   counts.absorbed = absorb_small(ps, nb, params, w);

@@ -40,7 +40,8 @@ struct PorousStepCounts {
 };
 
 /// Advances the absorbed water by dt. Deletions and creations are queued in `ps` (applied by
-/// compact()). Fixed porous particles (boundary phase) keep φ = φ0 and P^p = 0.
+/// compact()). Fixed porous particles (boundary phase) keep φ = φ0; their P^p is the pore-water
+/// pressure of a rigid skeleton (pond pressure in contact, storage relaxation when saturated).
 template <int D>
 PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& params,
                              const Vec<D>& gravity, double dt);

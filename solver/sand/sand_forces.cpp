@@ -5,6 +5,7 @@
 #include "sand/frictional_stress.hpp"
 #include "sand/strain_rate.hpp"
 #include "sand/yield.hpp"
+#include "porous/effective_stress.hpp"
 #include "water/pressure_force.hpp"
 #include "water/viscosity_force.hpp"
 
@@ -33,7 +34,7 @@ std::pair<ContactLaw, double> pair_contact(const ParticleSet<D>& ps, std::size_t
 
 template <int D>
 void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double gravity,
-                       double dt, MatArray<D>& stress) {
+                       double dt, MatArray<D>& stress, double stress_scale, double pore_stiffness) {
   stress.assign(ps.size(), Mat<D>::Zero());
   const double sin_phi = sand.sin_phi();
   const double strength = yield_strength_factor(sand.yield_surface);
@@ -47,7 +48,8 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
     ps.strain_rate[i] = 0.0;
     if (!is_sand(ps.phase[i])) continue;
     const Mat<D> Dr = strain_rate<D>(velocity_gradient(ps, nb, i, &predicted));
-    const double p = granular_pressure(ps.p[i], ps.rho0[i], gravity, rest_spacing<D>(ps.m[i], ps.rho0[i]));
+    const double p = effective_pressure(granular_pressure(ps.p[i], ps.rho0[i], gravity, rest_spacing<D>(ps.m[i], ps.rho0[i])),
+                                        stress_scale, pore_stiffness, ps.saturation[i]);  // eq 32
     const double L = rigid_length(ps, i, sand);
     ps.strain_rate[i] = Dr.norm();
     ps.rigid[i] = is_rigid<D>(rigid_stress<D>(Dr, ps.rho[i], L, dt), p, sin_phi, sand.cohesion, strength) ? 1 : 0;
@@ -135,7 +137,7 @@ void add_wall_friction(ParticleSet<D>& ps, const VecArrayOf<D>& wall_force, doub
 
 #define SC_INSTANTIATE(D)                                                                                         \
   template void update_sand_state<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, double, double, \
-                                     MatArray<D>&);                                                               \
+                                     MatArray<D>&, double, double);                                               \
   template void add_sand_forces<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, const WaterParams&, \
                                    double, const MatArray<D>&, VecArrayOf<D>&);                                   \
   template void add_frictional_forces<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const MatArray<D>&,             \

@@ -1,0 +1,54 @@
+// Pore-water pressure in a rigid saturated skeleton (ours [I]; Darcy 1856, incompressible pore water).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/particle_set.hpp"
+#include "neighbours/neighbour_grid.hpp"
+
+namespace sc {
+
+/// Role of a particle in the pore-pressure solve.
+enum class PressureRole : std::uint8_t {
+  None,       ///< takes no part (water, non-porous walls): a missing neighbour is a no-flow side
+  Unknown,    ///< saturated rigid porous particle: P is solved for
+  Prescribed  ///< porous particle whose P is given (pond contact, seepage face, unsaturated, moving sand)
+};
+
+/// Solves for P at the particles with role Unknown, the others with role Prescribed holding their
+/// value in `P` (a Dirichlet condition), particles with role None being absent (no flow across).
+/// Why: in a rigid saturated skeleton with homogeneous permeability the pore water is
+/// incompressible, so the Darcy flux of [thesis eq. 26], q = −(k/μ)∇Φ with the piezometric
+/// pressure Φ = P − ρ^f g·x, is divergence-free: ∇²Φ = 0 (P is linear along a permeameter), and
+/// an absent neighbour is a no-flow side, ∂Φ/∂n = 0 (at a floor: ∂P/∂z = −ρ^f g, hydrostatic).
+/// Discretisation: the SPH Laplacian of Brookshaw (1985), Σ_j w_ij (Φ_j − Φ_i) = 0 with the
+/// symmetric weights w_ij = |∇W_spiky(r_ij, h̄_ij)| / r_ij (equal volumes) (compact: no odd-even mode), solved
+/// by conjugate gradients warm-started from `P` (serial, so bitwise reproducible). A cluster of
+/// unknowns with no prescribed neighbour has no defined pressure: a relative regularisation of
+/// 1e-9 on the diagonal sets it to 0.
+/// Hydrostatic pressure of every water particle from the water column above it, ours [I]:
+/// P_j = ρ^f |g| s (Σ_{k above j} m_k + m_j/2) / m0, summing the water particles k in the same
+/// vertical column of width s (the spacing; cells of the horizontal axes, gravity along the last
+/// axis); a full particle (mass m0, the lattice mass that makes the SPH density ρ^f) is one
+/// spacing of water height, a shrunken one a fraction of it. A gap of more than 1.5 spacings
+/// ends a column (water dripping under a porous bed does not carry the pond above the bed). Used instead of the weakly compressible SPH pressure where water meets a rigid porous
+/// body: the pore water is incompressible and feels the pond's weight, not the acoustic noise of
+/// the Tait pressure (a few hundred Pa at c = 15 m/s, as much as the head of a shallow pond).
+/// Zero for particles that are not water.
+template <int D>
+std::vector<double> water_column_pressure(const ParticleSet<D>& ps, double spacing, double full_mass,
+                                          double fluid_density, double gravity);
+
+/// Pressure of the pond at a porous particle i in contact with water: the column pressures of its
+/// water neighbours carried to x_i hydrostatically, Σ_j W_ij (P_j + ρ^f g·(x_i − x_j)) / Σ_j W_ij
+/// (the extrapolation of Adami et al. 2012, poly6 weights), at least 0.
+template <int D>
+double pond_pressure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const std::vector<double>& column,
+                     std::size_t i, double fluid_density, const Vec<D>& gravity);
+
+template <int D>
+void solve_harmonic_pressure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
+                             const std::vector<PressureRole>& role, double fluid_density, const Vec<D>& gravity,
+                             std::vector<double>& P);
+
+}  // namespace sc
