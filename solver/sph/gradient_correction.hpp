@@ -28,7 +28,7 @@ Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
     if (j == i) continue;
     const Vec<D> d = ps.x[i] - ps.x[j];
     const double r = d.norm();
-    const Vec<D> grad = 0.5 * (kernel::spiky_gradient<D>(d, r, ps.h[i]) + kernel::spiky_gradient<D>(d, r, ps.h[j]));
+    const Vec<D> grad = kernel::pair_average([&](double h) { return kernel::spiky_gradient<D>(d, r, h); }, ps.h[i], ps.h[j]);
     M += ps.volume(j) * grad * (-d).transpose();
   }
   const Mat<D> S = 0.5 * (M + M.transpose());
