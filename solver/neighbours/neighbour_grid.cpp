@@ -23,7 +23,6 @@ template <int D>
 void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
   const std::size_t n = ps.size();
   sorted_.resize(n);
-  descents_ = 0;
   if (n == 0) return;
   if (n >= UINT32_MAX) throw std::runtime_error("neighbour search: too many particles");
 
@@ -56,7 +55,6 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
     inert_[i] = ps.inert(i);
     slot_of_[i] = 2 * static_cast<std::uint64_t>(c) + inert_[i];
     ++slot_start_[slot_of_[i] + 2];
-    descents_ += i > 0 && slot_of_[i] < slot_of_[i - 1];
   }
   for (std::size_t s = 1; s < slot_start_.size(); ++s) slot_start_[s] += slot_start_[s - 1];
   xs_.resize(n);
@@ -69,9 +67,11 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
   }
 }
 
-// Visits the rows of 3 cells along x around particle i's cell in a fixed order (rows, then x), so
+// Scans the rows of 3 cells along x around particle i's cell in a fixed order (rows, then x), so
 // the list comes out ordered by cell. A non-inert particle scans each row as one range of sorted_
 // (the cells of a row are adjacent there); an inert one only the non-inert part of each cell.
+// The scan writes every candidate and advances past it only if it is a neighbour (no branch to
+// mispredict), into room reserved for all candidates.
 template <int D>
 void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out) const {
   const Vec<D> xi = ps.x[i];
@@ -80,9 +80,12 @@ void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i
   for (int d = 0; d < D; ++d)
     c0[d] = std::min<std::int64_t>(dims_[d] - 1, static_cast<std::int64_t>((xi[d] - lo_[d]) / cell_));
   const std::int64_t x_first = std::max<std::int64_t>(c0[0] - 1, 0), x_last = std::min(c0[0] + 1, dims_[0] - 1);
-  auto scan = [&](std::uint32_t begin, std::uint32_t end) {
-    for (std::uint32_t k = begin; k < end; ++k)
-      if (are_neighbours((xi - xs_[k]).squaredNorm(), hi, hs_[k])) out.push_back(static_cast<std::uint32_t>(sorted_[k]));
+  std::array<std::uint32_t, 27> begin{}, end{};
+  std::size_t ranges = 0, candidates = 0;
+  auto add_range = [&](std::uint32_t b, std::uint32_t e) {
+    begin[ranges] = b;
+    end[ranges++] = e;
+    candidates += e - b;
   };
   std::array<int, D> off;
   off.fill(-1);
@@ -97,14 +100,33 @@ void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i
     if (inside) {
       row *= dims_[0];
       if (!inert_[i])
-        scan(slot_start_[2 * (row + x_first)], slot_start_[2 * (row + x_last) + 2]);
+        add_range(slot_start_[2 * (row + x_first)], slot_start_[2 * (row + x_last) + 2]);
       else
-        for (std::int64_t c = row + x_first; c <= row + x_last; ++c) scan(slot_start_[2 * c], slot_start_[2 * c + 1]);
+        for (std::int64_t c = row + x_first; c <= row + x_last; ++c) add_range(slot_start_[2 * c], slot_start_[2 * c + 1]);
     }
     int d = 1;
     while (d < D && ++off[d] > 1) off[d++] = -1;
     if (d == D) break;
   }
+  const std::size_t first = out.size();
+  out.resize(first + candidates);
+  std::uint32_t* w = out.data() + first;
+  for (std::size_t r = 0; r < ranges; ++r)
+    for (std::uint32_t k = begin[r]; k < end[r]; ++k) {
+      *w = sorted_[k];
+      w += are_neighbours((xi - xs_[k]).squaredNorm(), hi, hs_[k]);
+    }
+  out.resize(static_cast<std::size_t>(w - out.data()));
+}
+
+template <int D>
+const std::vector<std::size_t>& NeighbourGrid<D>::storage_order() {
+  storage_order_.clear();
+  for (const std::size_t i : sorted_)
+    if (!inert_[i]) storage_order_.push_back(i);
+  for (const std::size_t i : sorted_)
+    if (inert_[i]) storage_order_.push_back(i);
+  return storage_order_;
 }
 
 template <int D>

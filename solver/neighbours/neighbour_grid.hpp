@@ -8,8 +8,8 @@
 // outside the porous flow) are left out, as no pass uses them; so the list of an inert particle
 // holds only its non-inert neighbours, and every other list includes the particle itself.
 //
-// A rebuild is two calls: `bin` sorts the particles into cells (and tells how far the particle
-// order is from the cell order, see ParticleSet::permute), `find_pairs` builds the lists.
+// A rebuild is two calls: `bin` sorts the particles into cells, `find_pairs` builds the lists; in
+// between, the particles can be put in storage_order() (then bin again).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -38,10 +38,9 @@ class NeighbourGrid {
   }
   std::size_t size() const { return offset_.empty() ? 0 : offset_.size() - 1; }
   std::size_t total_pairs() const { return index_.size(); }
-  /// Particle indices in cell order (a cache-friendly order; see ParticleSet::permute).
-  const std::vector<std::size_t>& cell_order() const { return sorted_; }
-  /// Number of particles whose cell order is lower than their predecessor's (0: in cell order).
-  std::size_t out_of_order() const { return descents_; }
+  /// A cache-friendly order for ParticleSet::permute, from the last bin(): the non-inert
+  /// particles by cell, then the inert ones by cell (so the particles that move stay together).
+  const std::vector<std::size_t>& storage_order();
 
  private:
   void append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out) const;
@@ -58,7 +57,7 @@ class NeighbourGrid {
   std::array<std::int64_t, D> dims_{};
   Vec<D> lo_;
   double cell_ = 0.0;
-  std::size_t descents_ = 0;
+  std::vector<std::size_t> storage_order_;
 };
 
 /// Brute-force O(N^2) twin with the same pair rule, for tests.

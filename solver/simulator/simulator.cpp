@@ -80,7 +80,7 @@ template <int D>
 void Simulator<D>::compute_forces() {
   {
     auto t = timers_.time(Stage::Neighbours);
-    nb_.rebuild(ps_);
+    sort_and_find_neighbours();
   }
   {
     auto t = timers_.time(Stage::Density);
@@ -100,6 +100,19 @@ void Simulator<D>::compute_forces() {
     add_water_forces(ps_, nb_, params_.water, correction_);
     if (has_sand_) compute_sand_forces();
   }
+}
+
+template <int D>
+void Simulator<D>::sort_and_find_neighbours() {
+  nb_.bin(ps_);
+  // Particles that are neighbours in space should be neighbours in memory: every kSortEvery steps
+  // (counted from the run's start, so a resumed run sorts at the same steps) they are put back in
+  // storage order (NeighbourGrid::storage_order). A sort only relabels them (ParticleSet::permute, ids kept).
+  if (steps_ % kSortEvery == 0) {
+    ps_.permute(nb_.storage_order());
+    nb_.bin(ps_);
+  }
+  nb_.find_pairs(ps_);
 }
 
 template <int D>

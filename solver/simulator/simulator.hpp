@@ -53,6 +53,10 @@ class Simulator {
 
  private:
   void compute_forces();
+  /// Neighbour lists of the current step, after putting the particles back in cell order every
+  /// kSortEvery steps.
+  void sort_and_find_neighbours();
+  static constexpr long kSortEvery = 16;
   /// Sand (thesis Fig. 3.3): yield state and frictional stress, then the sand forces.
   void compute_sand_forces();
   void integrate(double dt);
