@@ -42,7 +42,8 @@ template <int D>
 void compute_gradient_corrections(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, MatArray<D>& L) {
   L.resize(ps.size());
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+  // Dynamic: the work per particle varies (walls, free surface) and moving particles are stored first.
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) L[i] = ps.moves(i) ? gradient_correction(ps, nb, i) : Mat<D>::Identity();
 }
 
