@@ -1,6 +1,9 @@
 // The simulator: one step reads top to bottom like the thesis algorithm (thesis Fig. 3.9), each
 // line a call into one physics file. Later physics (sand, porous flow, adaptivity) plugs in here.
 #pragma once
+#include <optional>
+#include <string>
+
 #include "core/errors.hpp"
 #include "core/particle_set.hpp"
 #include "core/stage_timers.hpp"
@@ -25,6 +28,12 @@ struct SimulationParams {
   std::vector<double> gravity, domain_min, domain_max;
 
   static SimulationParams from_case(const CaseSpec& spec, double spacing);
+};
+
+/// An invalid particle state: the field and what is wrong with it.
+struct StateError {
+  const char* field;
+  std::string what;
 };
 
 template <int D>
@@ -62,6 +71,8 @@ class Simulator {
   void integrate(double dt);
   /// Throws BlowUpError naming the first offending particle (lowest index).
   void check_state() const;
+  /// What is wrong with particle i, if anything.
+  std::optional<StateError> state_error(std::size_t i) const;
 
   ParticleSet<D> ps_, last_good_;
   NeighbourGrid<D> nb_;
