@@ -1,6 +1,7 @@
 // Grid neighbour search against brute force, with unequal support radii.
 #include <boost/test/unit_test.hpp>
 #include <random>
+#include <set>
 
 #include "neighbours/neighbour_grid.hpp"
 
@@ -8,8 +9,9 @@ using namespace sc;
 
 namespace {
 
+/// Random particles; with `walls`, every third is a fixed wall particle and half of those porous.
 template <int D>
-void check_against_brute_force(unsigned seed, std::size_t n) {
+ParticleSet<D> random_particles(unsigned seed, std::size_t n, bool walls) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> pos(0.0, 1.0), radius(0.03, 0.12);
   ParticleSet<D> ps;
@@ -17,26 +19,61 @@ void check_against_brute_force(unsigned seed, std::size_t n) {
     const std::size_t i = ps.append();
     for (int d = 0; d < D; ++d) ps.x[i][d] = pos(rng);
     ps.h[i] = radius(rng);
+    if (walls && k % 3 == 0) ps.phase[i] = static_cast<std::uint8_t>(Phase::Boundary);
+    if (walls && k % 6 == 0) ps.porosity[i] = 0.4;
   }
+  return ps;
+}
+
+template <int D>
+void check_against_brute_force(unsigned seed, std::size_t n, bool walls) {
+  const ParticleSet<D> ps = random_particles<D>(seed, n, walls);
   NeighbourGrid<D> grid;
   grid.rebuild(ps);
   const auto brute = brute_force_neighbours(ps);
-  std::size_t pairs = 0;
+  std::size_t pairs = 0, inert_pairs = 0;
   for (std::size_t i = 0; i < n; ++i) {
     std::vector<std::uint32_t> got(grid.of(i).begin(), grid.of(i).end());
     std::sort(got.begin(), got.end());
     BOOST_TEST(got == brute[i], boost::test_tools::per_element());
     pairs += got.size();
+    for (const auto j : got) inert_pairs += ps.inert(i) && ps.inert(j);
   }
   BOOST_TEST(pairs > 2 * n);  // the test set really has neighbours
+  BOOST_TEST(inert_pairs == 0u);
 }
 
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(neighbours)
 
-BOOST_AUTO_TEST_CASE(grid_equals_brute_force_2d) { check_against_brute_force<2>(1, 1500); }
-BOOST_AUTO_TEST_CASE(grid_equals_brute_force_3d) { check_against_brute_force<3>(2, 2000); }
+BOOST_AUTO_TEST_CASE(grid_equals_brute_force_2d) { check_against_brute_force<2>(1, 1500, false); }
+BOOST_AUTO_TEST_CASE(grid_equals_brute_force_3d) { check_against_brute_force<3>(2, 2000, false); }
+BOOST_AUTO_TEST_CASE(grid_with_walls_equals_brute_force_2d) { check_against_brute_force<2>(3, 1500, true); }
+BOOST_AUTO_TEST_CASE(grid_with_walls_equals_brute_force_3d) { check_against_brute_force<3>(4, 2000, true); }
+
+BOOST_AUTO_TEST_CASE(sorting_the_particles_only_relabels_the_lists) {
+  // Putting the particles in the grid's storage order (ParticleSet::permute) relabels the lists and
+  // nothing else; afterwards the non-inert particles come first, each group in cell order.
+  ParticleSet<3> ps = random_particles<3>(5, 1500, true);
+  NeighbourGrid<3> grid;
+  grid.rebuild(ps);
+  std::vector<std::set<std::int64_t>> before(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    for (const auto j : grid.of(i)) before[ps.id[i]].insert(ps.id[j]);
+  ps.permute(grid.storage_order());
+  grid.rebuild(ps);
+  std::size_t inert_before_other = 0;
+  for (std::size_t i = 1; i < ps.size(); ++i) inert_before_other += ps.inert(i - 1) && !ps.inert(i);
+  BOOST_TEST(inert_before_other == 0u);
+  const std::vector<std::size_t>& order = grid.storage_order();
+  BOOST_TEST(std::is_sorted(order.begin(), order.end()));  // already in storage order
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    std::set<std::int64_t> after;
+    for (const auto j : grid.of(i)) after.insert(ps.id[j]);
+    BOOST_TEST((after == before[ps.id[i]]));
+  }
+}
 
 BOOST_AUTO_TEST_CASE(pair_rule_uses_the_larger_support) {
   ParticleSet<2> ps;

@@ -72,9 +72,11 @@ void run_and_kill(const std::string& out, long kill_at) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (!fs::exists(out + target) && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  const auto aim_until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  // Aim the kill at a moment a file is being written, for a short while only: the whole run takes
+  // about 1 s, so a long aim can outlast it (then there is nothing left to kill).
+  const auto aim_until = std::chrono::steady_clock::now() + std::chrono::milliseconds(200);
   while (!writing(out) && std::chrono::steady_clock::now() < aim_until) {
-  }  // aim the kill at a moment a file is being written
+  }
   child.kill(SIGKILL);
   const test::ProcessResult r = child.wait(30.0);
   BOOST_TEST(r.signal == SIGKILL, "the run ended before it was killed (exit " << r.exit_code << ")");

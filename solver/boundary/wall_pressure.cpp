@@ -10,7 +10,8 @@ template <int D>
 void extrapolate_wall_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Vec<D>& gravity,
                                const EquationOfState& eos) {
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+  // Dynamic: the work per particle varies (walls, free surface) and moving particles are stored first.
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t w = 0; w < n; ++w) {
     if (ps.phase_of(w) != Phase::Boundary) continue;
     double sum_w = 0.0, sum_p = 0.0, sum_g = 0.0;

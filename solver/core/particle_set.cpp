@@ -67,10 +67,11 @@ bool ParticleSet<D>::compact() {
 
 template <int D>
 void ParticleSet<D>::permute(const std::vector<std::size_t>& order) {
-  visit_fields([&order](std::string_view, auto& field) {
-    std::decay_t<decltype(field)> out;
-    out.reserve(order.size());
-    for (std::size_t k : order) out.push_back(field[k]);
+  const auto n = static_cast<std::int64_t>(order.size());
+  visit_fields([&order, n](std::string_view, auto& field) {
+    std::decay_t<decltype(field)> out(order.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t k = 0; k < n; ++k) out[k] = field[order[k]];
     field.swap(out);
   });
 }

@@ -64,6 +64,9 @@ class ParticleSet {
   std::size_t size() const { return x.size(); }
   Phase phase_of(std::size_t i) const { return static_cast<Phase>(phase[i]); }
   bool moves(std::size_t i) const { return phase_of(i) != Phase::Boundary; }
+  /// A fixed wall particle outside the porous flow: it only acts with moving or porous particles,
+  /// so the neighbour search leaves out pairs of two inert particles.
+  bool inert(std::size_t i) const { return phase_of(i) == Phase::Boundary && !(porosity[i] > 0.0); }
   double volume(std::size_t i) const { return m[i] / rho[i]; }
 
   /// Appends one particle with every field zero (rest density and density 1 to keep V finite)

@@ -1,7 +1,6 @@
 #include "neighbours/neighbour_grid.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -14,88 +13,151 @@ inline bool are_neighbours(double r2, double hi, double hj) {
   return r2 <= hmax * hmax;
 }
 
+// Particles per chunk of the pair search: chunks are the unit of work sharing, fixed in size so the
+// result does not depend on the number of threads.
+constexpr std::size_t kChunk = 512;
+
 }  // namespace
 
 template <int D>
-void NeighbourGrid<D>::rebuild(const ParticleSet<D>& ps) {
+void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
+  const std::size_t n = ps.size();
+  sorted_.resize(n);
+  if (n == 0) return;
+  if (n >= UINT32_MAX) throw std::runtime_error("neighbour search: too many particles");
+
+  double hmax = 0.0;
+  Vec<D> hi = ps.x[0];
+  lo_ = ps.x[0];
+  for (std::size_t i = 0; i < n; ++i) {
+    hmax = std::max(hmax, ps.h[i]);
+    lo_ = lo_.cwiseMin(ps.x[i]);
+    hi = hi.cwiseMax(ps.x[i]);
+  }
+  if (!(hmax > 0.0)) throw std::logic_error("neighbour search: support radius must be positive");
+  cell_ = hmax;
+  std::int64_t cells = 1;
+  for (int d = 0; d < D; ++d) {
+    dims_[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo_[d]) / hmax)) + 1;
+    cells *= dims_[d];
+  }
+  if (cells > 400'000'000) throw std::runtime_error("neighbour search: particles spread over too many cells");
+
+  inert_.resize(n);
+  slot_of_.resize(n);
+  // Stable counting sort by slot. Counts go to slot_start_[s + 2]; after the prefix sum
+  // slot_start_[s + 1] is the start of slot s, and filling advances it to the start of s + 1.
+  slot_start_.assign(2 * static_cast<std::size_t>(cells) + 2, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::int64_t c = 0;
+    for (int d = D - 1; d >= 0; --d)
+      c = c * dims_[d] + std::min<std::int64_t>(dims_[d] - 1, static_cast<std::int64_t>((ps.x[i][d] - lo_[d]) / hmax));
+    inert_[i] = ps.inert(i);
+    slot_of_[i] = 2 * static_cast<std::uint64_t>(c) + inert_[i];
+    ++slot_start_[slot_of_[i] + 2];
+  }
+  for (std::size_t s = 1; s < slot_start_.size(); ++s) slot_start_[s] += slot_start_[s - 1];
+  xs_.resize(n);
+  hs_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t k = slot_start_[slot_of_[i] + 1]++;
+    sorted_[k] = i;
+    xs_[k] = ps.x[i];
+    hs_[k] = ps.h[i];
+  }
+}
+
+// Scans the rows of 3 cells along x around particle i's cell in a fixed order (rows, then x), so
+// the list comes out ordered by cell. A non-inert particle scans each row as one range of sorted_
+// (the cells of a row are adjacent there); an inert one only the non-inert part of each cell.
+// The scan writes every candidate and advances past it only if it is a neighbour (no branch to
+// mispredict), into room reserved for all candidates.
+template <int D>
+void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out) const {
+  const Vec<D> xi = ps.x[i];
+  const double hi = ps.h[i];
+  std::array<std::int64_t, D> c0{};
+  for (int d = 0; d < D; ++d)
+    c0[d] = std::min<std::int64_t>(dims_[d] - 1, static_cast<std::int64_t>((xi[d] - lo_[d]) / cell_));
+  const std::int64_t x_first = std::max<std::int64_t>(c0[0] - 1, 0), x_last = std::min(c0[0] + 1, dims_[0] - 1);
+  std::array<std::uint32_t, 27> begin{}, end{};
+  std::size_t ranges = 0, candidates = 0;
+  auto add_range = [&](std::uint32_t b, std::uint32_t e) {
+    begin[ranges] = b;
+    end[ranges++] = e;
+    candidates += e - b;
+  };
+  std::array<int, D> off;
+  off.fill(-1);
+  while (true) {
+    bool inside = true;
+    std::int64_t row = 0;  // linear index of the row's cell at x = 0
+    for (int d = D - 1; d >= 1; --d) {
+      const std::int64_t k = c0[d] + off[d];
+      if (k < 0 || k >= dims_[d]) { inside = false; break; }
+      row = row * dims_[d] + k;
+    }
+    if (inside) {
+      row *= dims_[0];
+      if (!inert_[i])
+        add_range(slot_start_[2 * (row + x_first)], slot_start_[2 * (row + x_last) + 2]);
+      else
+        for (std::int64_t c = row + x_first; c <= row + x_last; ++c) add_range(slot_start_[2 * c], slot_start_[2 * c + 1]);
+    }
+    int d = 1;
+    while (d < D && ++off[d] > 1) off[d++] = -1;
+    if (d == D) break;
+  }
+  const std::size_t first = out.size();
+  out.resize(first + candidates);
+  std::uint32_t* w = out.data() + first;
+  for (std::size_t r = 0; r < ranges; ++r)
+    for (std::uint32_t k = begin[r]; k < end[r]; ++k) {
+      *w = sorted_[k];
+      w += are_neighbours((xi - xs_[k]).squaredNorm(), hi, hs_[k]);
+    }
+  out.resize(static_cast<std::size_t>(w - out.data()));
+}
+
+template <int D>
+const std::vector<std::size_t>& NeighbourGrid<D>::storage_order() {
+  storage_order_.clear();
+  for (const std::size_t i : sorted_)
+    if (!inert_[i]) storage_order_.push_back(i);
+  for (const std::size_t i : sorted_)
+    if (inert_[i]) storage_order_.push_back(i);
+  return storage_order_;
+}
+
+template <int D>
+void NeighbourGrid<D>::find_pairs(const ParticleSet<D>& ps) {
   const std::size_t n = ps.size();
   offset_.assign(n + 1, 0);
   index_.clear();
   if (n == 0) return;
-
-  double hmax = 0.0;
-  Vec<D> lo = ps.x[0], hi = ps.x[0];
-  for (std::size_t i = 0; i < n; ++i) {
-    hmax = std::max(hmax, ps.h[i]);
-    lo = lo.cwiseMin(ps.x[i]);
-    hi = hi.cwiseMax(ps.x[i]);
-  }
-  if (!(hmax > 0.0)) throw std::logic_error("neighbour search: support radius must be positive");
-  std::array<std::int64_t, D> dims{};
-  std::int64_t cells = 1;
-  for (int d = 0; d < D; ++d) {
-    dims[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo[d]) / hmax)) + 1;
-    cells *= dims[d];
-  }
-  if (cells > 400'000'000) throw std::runtime_error("neighbour search: particles spread over too many cells");
-
-  auto cell_coord = [&](const Vec<D>& p, int d) {
-    return std::min<std::int64_t>(dims[d] - 1, static_cast<std::int64_t>((p[d] - lo[d]) / hmax));
-  };
-  cell_of_.resize(n);
-  cell_start_.assign(static_cast<std::size_t>(cells) + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    std::int64_t c = 0;
-    for (int d = D - 1; d >= 0; --d) c = c * dims[d] + cell_coord(ps.x[i], d);
-    cell_of_[i] = c;
-    ++cell_start_[c + 1];
-  }
-  for (std::int64_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
-  sorted_.resize(n);
-  {
-    std::vector<std::size_t> fill(cell_start_.begin(), cell_start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) sorted_[fill[cell_of_[i]]++] = i;  // stable counting sort
-  }
-
-  // Visits the candidates of particle i in a fixed order (cells, then index).
-  auto for_candidates = [&](std::size_t i, auto&& visit) {
-    std::array<std::int64_t, D> c0{};
-    for (int d = 0; d < D; ++d) c0[d] = cell_coord(ps.x[i], d);
-    std::array<int, D> off;
-    off.fill(-1);
-    while (true) {
-      bool inside = true;
-      std::int64_t c = 0;
-      for (int d = D - 1; d >= 0; --d) {
-        const std::int64_t k = c0[d] + off[d];
-        if (k < 0 || k >= dims[d]) { inside = false; break; }
-        c = c * dims[d] + k;
-      }
-      if (inside)
-        for (std::size_t s = cell_start_[c]; s < cell_start_[c + 1]; ++s) {
-          const std::size_t j = sorted_[s];
-          if (are_neighbours((ps.x[i] - ps.x[j]).squaredNorm(), ps.h[i], ps.h[j])) visit(j);
-        }
-      int d = 0;
-      while (d < D && ++off[d] > 1) off[d++] = -1;
-      if (d == D) break;
+  const auto chunks = static_cast<std::int64_t>((n + kChunk - 1) / kChunk);
+  chunk_lists_.resize(chunks);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    std::vector<std::uint32_t>& out = chunk_lists_[c];
+    out.clear();
+    const std::size_t end = std::min(n, (c + 1) * kChunk);
+    for (std::size_t i = c * kChunk; i < end; ++i) {
+      append_neighbours(ps, i, out);
+      offset_[i + 1] = out.size();
     }
-  };
-
-  const auto ni = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < ni; ++i) {
-    std::size_t count = 0;
-    for_candidates(i, [&count](std::size_t) { ++count; });
-    offset_[i + 1] = count;
   }
-  for (std::size_t i = 0; i < n; ++i) offset_[i + 1] += offset_[i];
-  index_.resize(offset_[n]);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < ni; ++i) {
-    std::size_t k = offset_[i];
-    for_candidates(i, [&](std::size_t j) { index_[k++] = static_cast<std::uint32_t>(j); });
+  // Per-chunk end positions -> global offsets.
+  std::size_t base = 0;
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    const std::size_t end = std::min(n, (c + 1) * kChunk);
+    for (std::size_t i = c * kChunk; i < end; ++i) offset_[i + 1] += base;
+    base = offset_[end];
   }
+  index_.resize(base);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t c = 0; c < chunks; ++c)
+    std::copy(chunk_lists_[c].begin(), chunk_lists_[c].end(), index_.begin() + offset_[c * kChunk]);
 }
 
 template <int D>
@@ -103,7 +165,7 @@ std::vector<std::vector<std::uint32_t>> brute_force_neighbours(const ParticleSet
   std::vector<std::vector<std::uint32_t>> out(ps.size());
   for (std::size_t i = 0; i < ps.size(); ++i)
     for (std::size_t j = 0; j < ps.size(); ++j)
-      if (are_neighbours((ps.x[i] - ps.x[j]).squaredNorm(), ps.h[i], ps.h[j]))
+      if (!(ps.inert(i) && ps.inert(j)) && are_neighbours((ps.x[i] - ps.x[j]).squaredNorm(), ps.h[i], ps.h[j]))
         out[i].push_back(static_cast<std::uint32_t>(j));
   return out;
 }

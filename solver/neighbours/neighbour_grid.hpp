@@ -3,9 +3,15 @@
 // Particles i and j are neighbours when |x_i - x_j| <= max(h_i, h_j) (thesis §3.6 after Adams
 // 2007). The cell size is the largest support radius, so the 3^D cells around a particle's cell hold
 // all its neighbours. Lists are stored once per step in compressed rows (CSR) and shared by every
-// pass; each list includes the particle itself and is ordered by cell, then by index, so it does
-// not depend on the number of threads.
+// pass; each list is ordered by cell, then within a cell by (inert last, index), so it does not
+// depend on the number of threads. Pairs of two inert particles (ParticleSet::inert: fixed walls
+// outside the porous flow) are left out, as no pass uses them; so the list of an inert particle
+// holds only its non-inert neighbours, and every other list includes the particle itself.
+//
+// A rebuild is two calls: `bin` sorts the particles into cells, `find_pairs` builds the lists; in
+// between, the particles can be put in storage_order() (then bin again).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -17,23 +23,41 @@ namespace sc {
 template <int D>
 class NeighbourGrid {
  public:
-  /// Rebuilds the lists for the current positions and support radii.
-  void rebuild(const ParticleSet<D>& particles);
+  /// Rebuilds the lists for the current positions and support radii (bin + find_pairs).
+  void rebuild(const ParticleSet<D>& particles) {
+    bin(particles);
+    find_pairs(particles);
+  }
+  /// Sorts the particles into cells; the lists are not valid until find_pairs.
+  void bin(const ParticleSet<D>& particles);
+  /// Builds the lists from the cells of the last bin() of the same particles.
+  void find_pairs(const ParticleSet<D>& particles);
 
   std::span<const std::uint32_t> of(std::size_t i) const {
     return {index_.data() + offset_[i], index_.data() + offset_[i + 1]};
   }
   std::size_t size() const { return offset_.empty() ? 0 : offset_.size() - 1; }
   std::size_t total_pairs() const { return index_.size(); }
-  /// Particle indices sorted by grid cell (a cache-friendly order; see ParticleSet::permute).
-  const std::vector<std::size_t>& cell_order() const { return sorted_; }
+  /// A cache-friendly order for ParticleSet::permute, from the last bin(): the non-inert
+  /// particles by cell, then the inert ones by cell (so the particles that move stay together).
+  const std::vector<std::size_t>& storage_order();
 
  private:
+  void append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out) const;
+
   std::vector<std::size_t> offset_;
   std::vector<std::uint32_t> index_;
-  std::vector<std::size_t> sorted_;      // particle indices ordered by cell (stable)
-  std::vector<std::size_t> cell_start_;  // start of each cell in sorted_
-  std::vector<std::int64_t> cell_of_;
+  std::vector<std::vector<std::uint32_t>> chunk_lists_;  // per chunk of particles, joined into index_
+  std::vector<std::size_t> sorted_;       // particle indices ordered by (cell, inert, index)
+  std::vector<std::uint32_t> slot_start_; // start in sorted_ of slot 2c (non-inert of cell c) and 2c + 1 (inert)
+  std::vector<std::uint64_t> slot_of_;    // slot of each particle
+  std::vector<std::uint8_t> inert_;
+  typename ParticleSet<D>::VecArray xs_;  // positions in sorted_ order
+  std::vector<double> hs_;                // support radii in sorted_ order
+  std::array<std::int64_t, D> dims_{};
+  Vec<D> lo_;
+  double cell_ = 0.0;
+  std::vector<std::size_t> storage_order_;
 };
 
 /// Brute-force O(N^2) twin with the same pair rule, for tests.

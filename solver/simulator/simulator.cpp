@@ -90,7 +90,7 @@ template <int D>
 void Simulator<D>::compute_forces() {
   {
     auto t = timers_.time(Stage::Neighbours);
-    nb_.rebuild(ps_);
+    sort_and_find_neighbours();
   }
   {
     auto t = timers_.time(Stage::Density);
@@ -120,6 +120,19 @@ template <int D>
 void Simulator<D>::compute_densities() {
   compute_density(ps_, nb_, params_.water.density_kernel);
   if (params_.adaptive) add_density_offsets(ps_);
+}
+
+template <int D>
+void Simulator<D>::sort_and_find_neighbours() {
+  nb_.bin(ps_);
+  // Particles that are neighbours in space should be neighbours in memory: every kSortEvery steps
+  // (counted from the run's start, so a resumed run sorts at the same steps) they are put back in
+  // storage order (NeighbourGrid::storage_order). A sort only relabels them (ParticleSet::permute, ids kept).
+  if (steps_ % kSortEvery == 0) {
+    ps_.permute(nb_.storage_order());
+    nb_.bin(ps_);
+  }
+  nb_.find_pairs(ps_);
 }
 
 template <int D>
@@ -190,20 +203,28 @@ void Simulator<D>::adapt() {
 }
 
 template <int D>
+std::optional<StateError> Simulator<D>::state_error(std::size_t i) const {
+  if (!ps_.x[i].allFinite()) return StateError{"position", "not finite"};
+  if (!ps_.v[i].allFinite()) return StateError{"velocity", "not finite"};
+  if (!std::isfinite(ps_.rho[i]) || !std::isfinite(ps_.p[i])) return StateError{"density", "not finite"};
+  for (int d = 0; d < D; ++d)
+    if (ps_.x[i][d] < lo_[d] || ps_.x[i][d] > hi_[d]) return StateError{"position", "particle left the domain"};
+  if (params_.density_window > 0.0 && ps_.moves(i) && steps_ > 0 &&
+      std::abs(ps_.rho[i] / ps_.rho0[i] - 1.0) > params_.density_window)
+    return StateError{"density", "outside the configured window |rho/rho0 - 1| <= " + std::to_string(params_.density_window)};
+  return std::nullopt;
+}
+
+template <int D>
 void Simulator<D>::check_state() const {
-  for (std::size_t i = 0; i < ps_.size(); ++i) {
-    auto fail = [&](const char* field, const std::string& what) {
-      throw BlowUpError(steps_ + 1, time_, static_cast<long>(i), std::string(phase_name(ps_.phase_of(i))), field, what);
-    };
-    if (!ps_.x[i].allFinite()) fail("position", "not finite");
-    if (!ps_.v[i].allFinite()) fail("velocity", "not finite");
-    if (!std::isfinite(ps_.rho[i]) || !std::isfinite(ps_.p[i])) fail("density", "not finite");
-    for (int d = 0; d < D; ++d)
-      if (ps_.x[i][d] < lo_[d] || ps_.x[i][d] > hi_[d]) fail("position", "particle left the domain");
-    if (params_.density_window > 0.0 && ps_.moves(i) && steps_ > 0 &&
-        std::abs(ps_.rho[i] / ps_.rho0[i] - 1.0) > params_.density_window)
-      fail("density", "outside the configured window |rho/rho0 - 1| <= " + std::to_string(params_.density_window));
-  }
+  const auto n = static_cast<std::int64_t>(ps_.size());
+  std::int64_t first = n;  // the lowest offending index, whatever the number of threads
+#pragma omp parallel for schedule(static) reduction(min : first)
+  for (std::int64_t i = 0; i < n; ++i)
+    if (i < first && state_error(i)) first = i;
+  if (first == n) return;
+  const StateError e = *state_error(first);
+  throw BlowUpError(steps_ + 1, time_, static_cast<long>(first), std::string(phase_name(ps_.phase_of(first))), e.field, e.what);
 }
 
 template class Simulator<2>;

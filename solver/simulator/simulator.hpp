@@ -1,6 +1,9 @@
 // The simulator: one step reads top to bottom like the thesis algorithm (thesis Fig. 3.9), each
 // line a call into one physics file. Later physics (sand, porous flow, adaptivity) plugs in here.
 #pragma once
+#include <optional>
+#include <string>
+
 #include "core/errors.hpp"
 #include "core/particle_set.hpp"
 #include "core/stage_timers.hpp"
@@ -26,6 +29,12 @@ struct SimulationParams {
   std::vector<double> gravity, domain_min, domain_max;
 
   static SimulationParams from_case(const CaseSpec& spec, double spacing);
+};
+
+/// An invalid particle state: the field and what is wrong with it.
+struct StateError {
+  const char* field;
+  std::string what;
 };
 
 template <int D>
@@ -59,6 +68,10 @@ class Simulator {
   /// Density of every moving particle: summation (eq 6) plus, in adaptive runs, the particle's
   /// decaying density offset (solver/adaptive/density_blend.hpp).
   void compute_densities();
+  /// Neighbour lists of the current step, after putting the particles back in cell order every
+  /// kSortEvery steps.
+  void sort_and_find_neighbours();
+  static constexpr long kSortEvery = 16;
   /// Sand (thesis Fig. 3.3): yield state and frictional stress, then the sand forces.
   void compute_sand_forces();
   void integrate(double dt);
@@ -68,6 +81,8 @@ class Simulator {
   void adapt();
   /// Throws BlowUpError naming the first offending particle (lowest index).
   void check_state() const;
+  /// What is wrong with particle i, if anything.
+  std::optional<StateError> state_error(std::size_t i) const;
 
   ParticleSet<D> ps_, last_good_;
   NeighbourGrid<D> nb_;

@@ -44,7 +44,8 @@ double density_sum(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::si
 template <int D>
 void compute_density(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, kernel::DensityKernel k) {
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+  // Dynamic: the work per particle varies (walls, free surface) and moving particles are stored first.
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i)
     if (ps.moves(i)) ps.rho[i] = density_sum(ps, nb, i, k);
 }

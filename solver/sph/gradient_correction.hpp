@@ -28,7 +28,7 @@ Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
     if (j == i) continue;
     const Vec<D> d = ps.x[i] - ps.x[j];
     const double r = d.norm();
-    const Vec<D> grad = 0.5 * (kernel::spiky_gradient<D>(d, r, ps.h[i]) + kernel::spiky_gradient<D>(d, r, ps.h[j]));
+    const Vec<D> grad = kernel::pair_average([&](double h) { return kernel::spiky_gradient<D>(d, r, h); }, ps.h[i], ps.h[j]);
     M += ps.volume(j) * grad * (-d).transpose();
   }
   const Mat<D> S = 0.5 * (M + M.transpose());
@@ -42,7 +42,8 @@ template <int D>
 void compute_gradient_corrections(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, MatArray<D>& L) {
   L.resize(ps.size());
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+  // Dynamic: the work per particle varies (walls, free surface) and moving particles are stored first.
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) L[i] = ps.moves(i) ? gradient_correction(ps, nb, i) : Mat<D>::Identity();
 }
 

@@ -113,9 +113,13 @@ inline double density_kernel(DensityKernel k, double r, double h) {
 
 /// Shooting/gathering average of a kernel function over the two supports h_i and h_j
 /// (Desbrun & Cani 1996 as used by Adams 2007): pair terms built from it are symmetric in i, j.
+/// Equal supports (most pairs) take one evaluation: 0.5 (k + k) = k holds exactly in floating
+/// point, so the result has the same bits as the two-evaluation form.
 template <class F>
 inline auto pair_average(F&& kernel_of_h, double hi, double hj) {
-  return 0.5 * (kernel_of_h(hi) + kernel_of_h(hj));
+  using T = decltype(kernel_of_h(hi));
+  if (hi == hj) return T(kernel_of_h(hi));
+  return T(0.5 * (kernel_of_h(hi) + kernel_of_h(hj)));
 }
 
 }  // namespace sc::kernel

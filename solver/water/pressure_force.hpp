@@ -21,7 +21,7 @@ namespace sc {
 template <int D>
 inline Vec<D> pressure_pair_force(double Vi, double Vj, double Pi, double Pj, const Vec<D>& d, double r,
                                   double hi, double hj, bool mueller_half = false) {
-  const Vec<D> grad = 0.5 * (kernel::spiky_gradient<D>(d, r, hi) + kernel::spiky_gradient<D>(d, r, hj));
+  const Vec<D> grad = kernel::pair_average([&](double h) { return kernel::spiky_gradient<D>(d, r, h); }, hi, hj);
   const double pressure = mueller_half ? 0.5 * (Pi + Pj) : (Pi + Pj);
   return (-Vi * Vj * pressure) * grad;
 }

@@ -11,7 +11,7 @@ namespace sc {
 template <int D>
 inline Vec<D> viscosity_pair_force(double mu, double Vi, double Vj, const Vec<D>& vi, const Vec<D>& vj,
                                    double r, double hi, double hj) {
-  const double lap = 0.5 * (kernel::viscosity_laplacian<D>(r, hi) + kernel::viscosity_laplacian<D>(r, hj));
+  const double lap = kernel::pair_average([r](double h) { return kernel::viscosity_laplacian<D>(r, h); }, hi, hj);
   return (mu * Vi * Vj * lap) * (vj - vi);
 }
 

@@ -12,7 +12,8 @@ void add_water_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Wate
   const bool corrected = params.gradient_correction && correction.size() == ps.size();
   const auto n = static_cast<std::int64_t>(ps.size());
   const double kappa_prime = params.surface_tension / params.reference_mass;
-#pragma omp parallel for schedule(static)
+  // Dynamic: the work per particle varies (walls, free surface) and moving particles are stored first.
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (ps.phase_of(i) != Phase::Water) continue;
     const double Vi = ps.volume(i);
