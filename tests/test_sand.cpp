@@ -383,8 +383,8 @@ BOOST_AUTO_TEST_CASE(all_sand_forces_conserve_momentum) {
   compute_gradient_corrections(ps, nb, correction);
   VecArrayOf<2> wall;
   add_water_forces(ps, nb, water, correction);
-  add_sand_forces(ps, nb, sand, water, 20.0, correction, wall);
-  add_water_sand_contact(ps, nb, sand, 20.0);
+  add_sand_forces(ps, nb, sand, water, 20.0, 1e-4, correction, wall);
+  add_water_sand_contact(ps, nb, sand, 20.0, 1e-4);
   update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
   add_frictional_forces(ps, nb, stress, correction);
   Vec<2> total = Vec<2>::Zero();
@@ -400,7 +400,7 @@ BOOST_AUTO_TEST_CASE(all_sand_forces_conserve_momentum) {
 BOOST_AUTO_TEST_CASE(bell_contact_is_antisymmetric_and_dissipative) {
   // Bell et al. 2005 contact: f_ij = −f_ji; for a head-on approach the damping makes the rebound
   // slower than the approach (restitution < 1).
-  const ContactLaw law = contact_law(1.0, 1.0, 0.01, 20.0, 0.5, 0.5);
+  const ContactLaw law = contact_law(1.0, 1.0, 0.01, 20.0, 0.5, 0.5, 1e-6);
   const Vec<2> d(-0.008, 0.001), vi(0.3, 0.1), vj(-0.2, 0.05);
   const Vec<2> fij = contact_force<2>(law, d, d.norm(), vi, vj, 0.01);
   const Vec<2> fji = contact_force<2>(law, Vec<2>(-d), d.norm(), vj, vi, 0.01);
@@ -418,6 +418,47 @@ BOOST_AUTO_TEST_CASE(bell_contact_is_antisymmetric_and_dissipative) {
   BOOST_TEST((v1 + v2).norm() < 1e-12);  // momentum
   BOOST_TEST(v1[0] < 0.0);               // they separated
   BOOST_TEST(std::abs(v1[0]) < 0.5);     // restitution < 1
+}
+
+BOOST_AUTO_TEST_CASE(symplectic_euler_damped_oscillator_is_stable_below_the_contact_bound) {
+  // x'' = −ω² x − 2ζω x' integrated as the simulator does (v first, then x), from x = 1: the
+  // motion stays bounded (|x| < 100 over 4000 steps) for ωΔt 2 % below stable_contact_omega_dt(ζ)
+  // and grows without bound (|x| > 1e6) 2 % above it, for several ζ.
+  for (const double zeta : {0.0, 0.5, 1.0}) {
+    auto largest_excursion = [zeta](double omega_dt) {
+      double x = 1.0, v = 0.0, largest = 1.0;  // units: ω = 1, Δt = omega_dt
+      for (int k = 0; k < 4000 && largest < 1e6; ++k) {
+        v += omega_dt * (-x - 2.0 * zeta * v);
+        x += omega_dt * v;
+        largest = std::max(largest, std::abs(x));
+      }
+      return largest;
+    };
+    const double bound = stable_contact_omega_dt(zeta);
+    BOOST_TEST(largest_excursion(0.98 * bound) < 100.0);
+    BOOST_TEST(largest_excursion(1.02 * bound) > 1e6);
+  }
+  BOOST_TEST(stable_contact_omega_dt(0.0) == 2.0, tt::tolerance(1e-15));
+}
+
+BOOST_AUTO_TEST_CASE(wall_contact_at_the_thesis_step_only_removes_energy) {
+  // A grain (c = 20 m/s, s = 0.0093 m) dropped at 0.5 m/s onto a wall particle, stepped at the
+  // thesis' Δt = 0.001 s (c Δt/s = 2.15): with the law of that step it rebounds slower than it came;
+  // with the uncapped law (c/s, the law of a tiny step) the same step makes it rebound faster.
+  const double m = 1.6e-3, s = 0.0093, dt = 1e-3;
+  auto rebound = [&](const ContactLaw& law) {
+    Vec<2> x(0.0, s + 1e-4), v(0.0, -0.5);
+    for (int k = 0; k < 200; ++k) {
+      v += (dt / m) * contact_force<2>(law, x, x.norm(), v, Vec<2>::Zero(), s);
+      x += dt * v;
+    }
+    return v[1];
+  };
+  const double capped = rebound(contact_law(m, 0.0, s, 20.0, 0.5, 0.0, dt));
+  const double uncapped = rebound(contact_law(m, 0.0, s, 20.0, 0.5, 0.0, 1e-9));
+  BOOST_TEST(capped > 0.0);
+  BOOST_TEST(capped < 0.5);
+  BOOST_TEST(uncapped > 0.5);
 }
 
 BOOST_AUTO_TEST_CASE(wall_friction_never_reverses_the_tangential_velocity) {

@@ -24,10 +24,12 @@ double rigid_length(const ParticleSet<D>& ps, std::size_t i, const SandParams& s
 /// Contact law and distance of the pair (i, j); a wall particle counts as infinitely heavy.
 template <int D>
 std::pair<ContactLaw, double> pair_contact(const ParticleSet<D>& ps, std::size_t i, std::size_t j,
-                                           const SandParams& sand, double sound_speed) {
+                                           const SandParams& sand, double sound_speed, double dt) {
   const double s = 0.5 * (rest_spacing<D>(ps.m[i], ps.rho0[i]) + rest_spacing<D>(ps.m[j], ps.rho0[j]));
   const double mj = ps.moves(j) ? ps.m[j] : 0.0;
-  return {contact_law(ps.m[i], mj, s, sound_speed, sand.contact_damping, std::tan(sand.friction_angle_deg * pi / 180.0)), s};
+  return {contact_law(ps.m[i], mj, s, sound_speed, sand.contact_damping,
+                      std::tan(sand.friction_angle_deg * pi / 180.0), dt),
+          s};
 }
 
 }  // namespace
@@ -59,7 +61,7 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
 
 template <int D>
 void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, const WaterParams& water,
-                     double sound_speed, const MatArray<D>& correction, VecArrayOf<D>& wall_force) {
+                     double sound_speed, double dt, const MatArray<D>& correction, VecArrayOf<D>& wall_force) {
   wall_force.assign(ps.size(), Vec<D>::Zero());
   const bool corrected = water.gradient_correction && correction.size() == ps.size();
   const auto n = static_cast<std::int64_t>(ps.size());
@@ -80,7 +82,7 @@ void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandP
         if (sand.viscosity > 0.0) f += viscosity_pair_force<D>(sand.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
         continue;
       }
-      const auto [law, s] = pair_contact(ps, i, j, sand, sound_speed);
+      const auto [law, s] = pair_contact(ps, i, j, sand, sound_speed, dt);
       const Vec<D> fc = contact_force<D>(law, d, r, ps.v[i], ps.v[j], s);
       f += fc;
       if (ps.moves(j)) f += viscosity_pair_force<D>(water.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
@@ -111,7 +113,8 @@ void add_frictional_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const
 }
 
 template <int D>
-void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double sound_speed) {
+void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double sound_speed,
+                            double dt) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -120,7 +123,7 @@ void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, cons
     for (const auto j : nb.of(i)) {
       if (!is_sand(ps.phase[j])) continue;
       const Vec<D> d = ps.x[i] - ps.x[j];
-      const auto [law, s] = pair_contact(ps, i, j, sand, sound_speed);
+      const auto [law, s] = pair_contact(ps, i, j, sand, sound_speed, dt);
       f += contact_force<D>(law, d, d.norm(), ps.v[i], ps.v[j], s);
     }
     ps.force[i] += f;
@@ -139,10 +142,11 @@ void add_wall_friction(ParticleSet<D>& ps, const VecArrayOf<D>& wall_force, doub
   template void update_sand_state<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, double, double, \
                                      MatArray<D>&, double, double);                                               \
   template void add_sand_forces<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, const WaterParams&, \
-                                   double, const MatArray<D>&, VecArrayOf<D>&);                                   \
+                                   double, double, const MatArray<D>&, VecArrayOf<D>&);                                   \
   template void add_frictional_forces<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const MatArray<D>&,             \
                                          const MatArray<D>&);                                                     \
-  template void add_water_sand_contact<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, double);   \
+  template void add_water_sand_contact<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, double,   \
+                                          double);                                                                \
   template void add_wall_friction<D>(ParticleSet<D>&, const VecArrayOf<D>&, double, double);
 SC_INSTANTIATE(2)
 SC_INSTANTIATE(3)

@@ -52,15 +52,17 @@ void add_frictional_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const
 /// water model so that sand-water pairs are symmetric), viscosity (water's μ against water, the
 /// sand viscosity against sand), and Bell contact against
 /// water and wall particles. wall_force[i] receives the push of rough wall particles on i (pressure
-/// and contact), the normal force of the wall friction.
+/// and contact), the normal force of the wall friction. dt is the step the contact must be stable at
+/// (contact_law).
 template <int D>
 void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, const WaterParams& water,
-                     double sound_speed, const MatArray<D>& correction, VecArrayOf<D>& wall_force);
+                     double sound_speed, double dt, const MatArray<D>& correction, VecArrayOf<D>& wall_force);
 
 /// Adds to ps.force of every water particle the Bell contact force of its sand neighbours (the
 /// reaction of the sand-water contact in add_sand_forces).
 template <int D>
-void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double sound_speed);
+void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double sound_speed,
+                            double dt);
 
 /// Adds the Coulomb friction of rough walls (wall_friction_force) to every sand particle pushed by one.
 template <int D>

@@ -137,8 +137,8 @@ void Simulator<D>::sort_and_find_neighbours() {
 
 template <int D>
 void Simulator<D>::compute_sand_forces() {
-  add_sand_forces(ps_, nb_, params_.sand, params_.water, params_.eos.sound_speed, correction_, wall_force_);
-  add_water_sand_contact(ps_, nb_, params_.sand, params_.eos.sound_speed);
+  add_sand_forces(ps_, nb_, params_.sand, params_.water, params_.eos.sound_speed, last_dt_, correction_, wall_force_);
+  add_water_sand_contact(ps_, nb_, params_.sand, params_.eos.sound_speed, last_dt_);
   update_sand_state(ps_, nb_, params_.sand, g_.norm(), last_dt_, sand_stress_,
                     params_.porous ? params_.porous->stress_scale : 0.0, params_.porous ? params_.porous->pore_stiffness : 0.0);
   add_frictional_forces(ps_, nb_, sand_stress_, params_.water.gradient_correction ? correction_ : MatArray<D>{});
