@@ -89,9 +89,10 @@ std::array<int, D> corner(std::array<int, D> base, int mask) {
   return base;
 }
 
+// Nodes whose value would exceed `reach` are not visited (value infinite, source -1).
 template <int D>
 Propagation propagate(const BackgroundGrid<D>& grid, const Points<D>& sources,
-                      const std::vector<double>& offsets) {
+                      const std::vector<double>& offsets, double reach) {
   Propagation p{std::vector<double>(grid.size(), std::numeric_limits<double>::infinity()),
                 std::vector<std::int64_t>(grid.size(), -1)};
   using Item = std::pair<double, std::size_t>;
@@ -101,7 +102,7 @@ Propagation propagate(const BackgroundGrid<D>& grid, const Points<D>& sources,
     for (int d = 0; d < D; ++d) x[d] += c[d] * grid.dx;
     const double v = offsets[s] + (x - sources[s]).norm();
     const std::size_t k = grid.index(c);
-    if (!(v < p.value[k])) return;
+    if (!(v < p.value[k]) || v > reach) return;
     p.value[k] = v;
     p.source[k] = static_cast<std::int64_t>(s);
     queue.emplace(v, k);
@@ -192,17 +193,19 @@ FeatureSize<D> feature_size(const BackgroundGrid<D>& grid, const std::vector<dou
                             const FeatureSizeParams& params) {
   FeatureSize<D> out;
   out.surface = surface_samples<D>(grid, f);
-  const Propagation closest = propagate<D>(grid, out.surface, std::vector<double>(out.surface.size(), 0.0));
+  // Nothing beyond elfs_max from the surface can change a clamped elfs: every propagation stops there.
+  const double reach = params.elfs_max;
+  const Propagation closest = propagate<D>(grid, out.surface, std::vector<double>(out.surface.size(), 0.0), reach);
   out.distance = closest.value;
   for (std::size_t k = 0; k < f.size(); ++k)
     if (f[k] < 0.0) out.distance[k] = -out.distance[k];
   out.medial_axis = medial_axis<D>(grid, out.surface, closest, params);
   const Propagation to_medial =
-      propagate<D>(grid, out.medial_axis, std::vector<double>(out.medial_axis.size(), 0.0));
+      propagate<D>(grid, out.medial_axis, std::vector<double>(out.medial_axis.size(), 0.0), reach);
   out.lfs = lfs_at_samples<D>(grid, out.surface, out.medial_axis, to_medial);
   std::vector<double> seed = out.lfs;
   for (double& s : seed) s = std::min(s, params.lfs_max);
-  out.elfs = propagate<D>(grid, out.surface, seed).value;
+  out.elfs = propagate<D>(grid, out.surface, seed, reach).value;
   for (double& e : out.elfs) e = std::min(std::max(e, params.elfs_min), params.elfs_max);
   return out;
 }

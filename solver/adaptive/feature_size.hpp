@@ -49,6 +49,8 @@ struct FeatureSizeParams {
   double medial_jump = 2.0;  ///< closest samples further apart than this many cells: medial axis
   double medial_angle = 1.0471975511965976;  ///< ... and directions to them apart by more [rad]
   double elfs_min = 0.0;     ///< clamp of elfs [m] (e.g. alpha * r_min)
+  /// Also the reach of the computation: nodes further than elfs_max from the surface get
+  /// distance ±infinity and elfs = elfs_max without being visited (their elfs is clamped anyway).
   double elfs_max = std::numeric_limits<double>::infinity();  ///< (e.g. beta * r_max)
   /// Cap of lfs on the surface before it is extended inwards [m]. Infinite: Adams' elfs (a large
   /// smooth body may be coarse up to its surface). Finite: elfs = min_y (min(lfs(y), lfs_max) +
