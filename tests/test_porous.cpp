@@ -81,6 +81,18 @@ Simulator<2> exchange_scene() {
   return Simulator<2>(std::move(ps), sp);
 }
 
+/// A 12 x 12 sand lattice in simple shear v = (rate y, 0) at pressure 4000 Pa, densities computed.
+void shear_sand(ParticleSet<2>& ps, NeighbourGrid<2>& nb, double rate) {
+  nb.rebuild(ps);
+  compute_density(ps, nb, kernel::DensityKernel::Spiky);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    ps.v[i] = Vec<2>(rate * ps.x[i][1], 0.0);
+    ps.p[i] = 4000.0;
+  }
+}
+
+constexpr std::size_t kCentre = 6 * 12 + 6;  ///< an interior particle of the 12 x 12 lattice
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(porous)
@@ -277,23 +289,17 @@ BOOST_AUTO_TEST_CASE(wet_sand_friction_uses_the_effective_pressure_eq_32) {
   // and dry sand (S = 0) is unchanged by η k^p.
   ParticleSet<2> ps = test::square_lattice(12, kDx, 2.0, 2650.0, Phase::Sand);
   NeighbourGrid<2> nb;
-  nb.rebuild(ps);
-  compute_density(ps, nb, kernel::DensityKernel::Spiky);
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    ps.v[i] = Vec<2>(2.0 * ps.x[i][1], 0.0);  // simple shear
-    ps.p[i] = 4000.0;
-  }
+  shear_sand(ps, nb, 2.0);
   SandParams sand;
   sand.rigid_clusters = false;
-  const std::size_t c = static_cast<std::size_t>(6 * 12 + 6);
   MatArray<2> dry, dry_kp, wet;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, dry);
   update_sand_state(ps, nb, sand, 9.81, 1e-4, dry_kp, 1.0, 3000.0);
   for (auto& S : ps.saturation) S = 0.5;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, wet, 1.0, 3000.0);
-  BOOST_TEST(dry[c].norm() > 0.0);
-  BOOST_TEST((dry_kp[c] - dry[c]).norm() == 0.0);
-  BOOST_TEST(wet[c].norm() / dry[c].norm() == (4000.0 - 0.5 * 3000.0) / 4000.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(dry[kCentre].norm() > 0.0);
+  BOOST_TEST((dry_kp[kCentre] - dry[kCentre]).norm() == 0.0);
+  BOOST_TEST(wet[kCentre].norm() / dry[kCentre].norm() == (4000.0 - 0.5 * 3000.0) / 4000.0, boost::test_tools::tolerance(1e-12));
 }
 
 BOOST_AUTO_TEST_CASE(water_balance_over_1000_steps_with_absorption_and_emission) {
@@ -386,27 +392,21 @@ BOOST_AUTO_TEST_CASE(saturated_sand_loses_the_cohesion_that_held_it_rigid) {
   // cohesion loss is switched off (eq 32 is off here: k^p = 0).
   ParticleSet<2> ps = test::square_lattice(12, kDx, 2.0, 2650.0, Phase::Sand);
   NeighbourGrid<2> nb;
-  nb.rebuild(ps);
-  compute_density(ps, nb, kernel::DensityKernel::Spiky);
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    ps.v[i] = Vec<2>(20.0 * ps.x[i][1], 0.0);  // simple shear
-    ps.p[i] = 4000.0;
-  }
+  shear_sand(ps, nb, 20.0);
   SandParams sand;
   sand.rigid_clusters = false;
-  const std::size_t c = static_cast<std::size_t>(6 * 12 + 6);
   MatArray<2> stress;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
-  BOOST_TEST(ps.rigid[c] == 0);  // cohesionless: yields
+  BOOST_TEST(ps.rigid[kCentre] == 0);  // cohesionless: yields
   sand.cohesion = 1e6;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
-  BOOST_TEST(ps.rigid[c] == 1);  // dry and cohesive: rigid
+  BOOST_TEST(ps.rigid[kCentre] == 1);  // dry and cohesive: rigid
   for (auto& S : ps.saturation) S = 1.0;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
-  BOOST_TEST(ps.rigid[c] == 0);  // saturated: the cohesion is gone
+  BOOST_TEST(ps.rigid[kCentre] == 0);  // saturated: the cohesion is gone
   sand.wet_cohesion_loss = false;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
-  BOOST_TEST(ps.rigid[c] == 1);
+  BOOST_TEST(ps.rigid[kCentre] == 1);
 }
 
 BOOST_AUTO_TEST_CASE(compressed_wet_sand_squeezes_out_pore_water_and_keeps_the_balance) {
