@@ -17,6 +17,7 @@
 #include "porous/porous_flow.hpp"
 #include "porous/porous_setup.hpp"
 #include "porous/saturation.hpp"
+#include "porous/wet_cohesion.hpp"
 #include "porous/wet_density.hpp"
 #include "reference/analytic/capillary_rise.hpp"
 #include "reference/analytic/green_ampt.hpp"
@@ -79,6 +80,18 @@ Simulator<2> exchange_scene() {
   sp.porous->create_fraction = 0.5;
   return Simulator<2>(std::move(ps), sp);
 }
+
+/// A 12 x 12 sand lattice in simple shear v = (rate y, 0) at pressure 4000 Pa, densities computed.
+void shear_sand(ParticleSet<2>& ps, NeighbourGrid<2>& nb, double rate) {
+  nb.rebuild(ps);
+  compute_density(ps, nb, kernel::DensityKernel::Spiky);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    ps.v[i] = Vec<2>(rate * ps.x[i][1], 0.0);
+    ps.p[i] = 4000.0;
+  }
+}
+
+constexpr std::size_t kCentre = 6 * 12 + 6;  ///< an interior particle of the 12 x 12 lattice
 
 }  // namespace
 
@@ -276,23 +289,17 @@ BOOST_AUTO_TEST_CASE(wet_sand_friction_uses_the_effective_pressure_eq_32) {
   // and dry sand (S = 0) is unchanged by η k^p.
   ParticleSet<2> ps = test::square_lattice(12, kDx, 2.0, 2650.0, Phase::Sand);
   NeighbourGrid<2> nb;
-  nb.rebuild(ps);
-  compute_density(ps, nb, kernel::DensityKernel::Spiky);
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    ps.v[i] = Vec<2>(2.0 * ps.x[i][1], 0.0);  // simple shear
-    ps.p[i] = 4000.0;
-  }
+  shear_sand(ps, nb, 2.0);
   SandParams sand;
   sand.rigid_clusters = false;
-  const std::size_t c = static_cast<std::size_t>(6 * 12 + 6);
   MatArray<2> dry, dry_kp, wet;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, dry);
   update_sand_state(ps, nb, sand, 9.81, 1e-4, dry_kp, 1.0, 3000.0);
   for (auto& S : ps.saturation) S = 0.5;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, wet, 1.0, 3000.0);
-  BOOST_TEST(dry[c].norm() > 0.0);
-  BOOST_TEST((dry_kp[c] - dry[c]).norm() == 0.0);
-  BOOST_TEST(wet[c].norm() / dry[c].norm() == (4000.0 - 0.5 * 3000.0) / 4000.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(dry[kCentre].norm() > 0.0);
+  BOOST_TEST((dry_kp[kCentre] - dry[kCentre]).norm() == 0.0);
+  BOOST_TEST(wet[kCentre].norm() / dry[kCentre].norm() == (4000.0 - 0.5 * 3000.0) / 4000.0, boost::test_tools::tolerance(1e-12));
 }
 
 BOOST_AUTO_TEST_CASE(water_balance_over_1000_steps_with_absorption_and_emission) {
@@ -367,4 +374,75 @@ BOOST_AUTO_TEST_CASE(capillary_drive_and_fringe_references) {
   BOOST_TEST(analytic::held_water(kc, kRho, 9.81, alpha, 0.4) == held, boost::test_tools::tolerance(1e-6));
 }
 
+
+BOOST_AUTO_TEST_CASE(wet_cohesion_falls_linearly_to_zero_at_saturation) {
+  // Our cohesion-saturation law (solver/porous/wet_cohesion.hpp, Tampubolon et al. 2017): c0 (1 - S),
+  // full when dry, gone when saturated, monotone, S clamped to [0, 1].
+  BOOST_TEST(wet_cohesion(2000.0, 0.0) == 2000.0);
+  BOOST_TEST(wet_cohesion(2000.0, 1.0) == 0.0);
+  BOOST_TEST(wet_cohesion(2000.0, 0.25) == 1500.0, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(wet_cohesion(2000.0, 1.5) == 0.0);
+  BOOST_TEST(wet_cohesion(2000.0, -0.5) == 2000.0);
+  for (double S = 0.0; S < 1.0; S += 0.1) BOOST_TEST(wet_cohesion(2000.0, S + 0.1) < wet_cohesion(2000.0, S));
+}
+
+BOOST_AUTO_TEST_CASE(saturated_sand_loses_the_cohesion_that_held_it_rigid) {
+  // Eq 10 with the wet cohesion: a sheared lattice that only cohesion keeps rigid (it yields with
+  // c = 0) stays rigid while dry, yields when saturated, and stays rigid at S = 1 when the
+  // cohesion loss is switched off (eq 32 is off here: k^p = 0).
+  ParticleSet<2> ps = test::square_lattice(12, kDx, 2.0, 2650.0, Phase::Sand);
+  NeighbourGrid<2> nb;
+  shear_sand(ps, nb, 20.0);
+  SandParams sand;
+  sand.rigid_clusters = false;
+  MatArray<2> stress;
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
+  BOOST_TEST(ps.rigid[kCentre] == 0);  // cohesionless: yields
+  sand.cohesion = 1e6;
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
+  BOOST_TEST(ps.rigid[kCentre] == 1);  // dry and cohesive: rigid
+  for (auto& S : ps.saturation) S = 1.0;
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
+  BOOST_TEST(ps.rigid[kCentre] == 0);  // saturated: the cohesion is gone
+  sand.wet_cohesion_loss = false;
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
+  BOOST_TEST(ps.rigid[kCentre] == 1);
+}
+
+BOOST_AUTO_TEST_CASE(compressed_wet_sand_squeezes_out_pore_water_and_keeps_the_balance) {
+  // Moving porous sand, saturated, settles on a floor: its density rises, its pore volume
+  // (eq 24) falls, and the water that no longer fits goes to the emission store
+  // (porous_flow.cpp squeeze_out). The raw saturation m_p/(rho^f phi V) of every sand particle
+  // stays <= 1 after every step, some water is squeezed out, and free + stored + absorbed water is
+  // constant to 1e-12.
+  const PorousParams p = test_params();
+  ParticleSet<2> ps;
+  add_block(ps, p, Phase::Sand, {0.0, 0.0}, {0.1, 0.1}, 1.0);
+  add_block(ps, p, Phase::Boundary, {-0.1, -0.03}, {0.2, 0.0}, 0.0);
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.x[i][1] < 0.0) ps.porosity[i] = ps.absorbed[i] = 0.0;
+  SimulationParams sp;
+  sp.dt_max = 2.5e-4;
+  sp.eos.sound_speed = 15.0;
+  sp.gravity = {0.0, -9.81};
+  sp.domain_min = {-1.0, -1.0};
+  sp.domain_max = {1.0, 1.0};
+  sp.porous = p;
+  Simulator<2> sim(std::move(ps), sp);
+  const double initial = total_water(sim.particles());
+  double worst = 0.0, s_max = 0.0, stored = 0.0;
+  for (int step = 0; step < 200; ++step) {
+    sim.step();
+    const auto& q = sim.particles();
+    worst = std::max(worst, std::abs(total_water(q) - initial) / initial);
+    for (std::size_t i = 0; i < q.size(); ++i) {
+      if (q.phase_of(i) != Phase::Sand) continue;
+      s_max = std::max(s_max, q.absorbed[i] / (kRho * q.porosity[i] * q.volume(i)));
+      stored = std::max(stored, q.emit_store[i]);
+    }
+  }
+  BOOST_TEST(stored > 0.0);
+  BOOST_TEST(s_max <= 1.0 + 1e-12);
+  BOOST_TEST(worst <= 1e-12);
+}
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,6 +1,7 @@
 #include "adaptive_report.hpp"
 
 #include "run_record.hpp"
+#include "twin_run.hpp"
 
 namespace sc {
 
@@ -21,36 +22,9 @@ void add_account(const AdaptAccount& a, const std::map<std::string, MetricLimit>
   add_metric(r, limits, "merges", static_cast<double>(a.merges));
 }
 
-const Series* find_series(const ObserverResult& r, const std::string& name) {
-  for (const Series& s : r.series)
-    if (s.name == name) return &s;
-  return nullptr;
-}
-
 std::string metric_stem(const std::string& series) {
   const auto at = series.rfind("_sim");
   return at == std::string::npos ? series : series.substr(0, at) + series.substr(at + 4);
-}
-
-/// The twin's copy of `name` joins the series and every plot that shows `name`.
-void overlay_twin(const Series& twin, const std::string& name, ObserverResult& r) {
-  Series renamed = twin;
-  renamed.name = "uniform_" + name;
-  r.series.push_back(renamed);
-  for (Plot& p : r.plots)
-    for (std::size_t c = 0, n = p.curves.size(); c < n; ++c)
-      if (p.curves[c].series == name) p.curves.push_back({renamed.name, "uniform (no adaptivity)", "line"});
-}
-
-/// Names the "uniform_twin" block lists under `key` (an array of strings).
-std::vector<std::string> twin_names(JsonObject& twin, const std::string& key) {
-  std::vector<std::string> names;
-  if (!twin.has(key)) return names;
-  for (const json& name : twin.raw(key)) {
-    if (!name.is_string()) twin.fail(key, "must be an array of names (strings)");
-    names.push_back(name.get<std::string>());
-  }
-  return names;
 }
 
 struct TwinRequest {
@@ -61,17 +35,8 @@ void compare_with_twin(const CaseSpec& spec, double dx, const RunSettings& setti
                        const std::map<std::string, MetricLimit>& limits, RunResult& run) {
   CaseSpec uniform = spec;
   uniform.adaptive.reset();
-  RunSettings twin_settings;
-  twin_settings.out_dir = settings.out_dir + "/uniform";
-  twin_settings.end_time = settings.end_time;
-  twin_settings.label = settings.label + " (uniform twin)";
-  const RunResult twin = run_simulation(uniform, dx, twin_settings);
-  if (twin.status == "error") {
-    run.status = "error";
-    run.exit_code = twin.exit_code;
-    run.message = "uniform twin: " + twin.message;
-    return;
-  }
+  RunResult twin;
+  if (!run_twin(uniform, dx, settings, "uniform", "uniform twin", run, twin)) return;
   ObserverResult& r = run.observed;
   for (const std::string& n : request.series) {
     const Series* mine = find_series(r, n);
@@ -79,7 +44,7 @@ void compare_with_twin(const CaseSpec& spec, double dx, const RunSettings& setti
     if (!mine || !theirs)
       throw InputError(spec.file, "/validation/uniform_twin/series", "the observer writes no series named " + n);
     add_metric(r, limits, metric_stem(n) + "_vs_uniform_rms", series_difference(*theirs, *mine).relative_rms);
-    overlay_twin(*theirs, n, r);
+    overlay_twin(*theirs, n, "uniform", "uniform (no adaptivity)", r);
   }
   for (const std::string& n : request.metrics) {
     if (!r.metrics.count(n) || !twin.observed.metrics.count(n))
@@ -90,7 +55,7 @@ void compare_with_twin(const CaseSpec& spec, double dx, const RunSettings& setti
   add_metric(r, limits, "wall_time_ratio", twin.wall_seconds / run.wall_seconds);
   add_metric(r, limits, "uniform_wall_seconds", twin.wall_seconds);
   add_metric(r, limits, "uniform_moving_particles_mean", twin.moving_particles_mean);
-  overlay_twin(twin.moving_particles, "moving_particles", r);
+  overlay_twin(twin.moving_particles, "moving_particles", "uniform", "uniform (no adaptivity)", r);
 }
 
 }  // namespace

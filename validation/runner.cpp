@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "adaptive_report.hpp"
+#include "dry_twin_report.hpp"
 #include "io/atomic_file.hpp"
 #include "io/vtu_writer.hpp"
 #include "progress.hpp"
@@ -101,6 +102,7 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
 RunResult run_simulation(const CaseSpec& spec, double dx, const RunSettings& settings) {
   RunResult r = spec.dimension == 2 ? run_in_dimension<2>(spec, dx, settings) : run_in_dimension<3>(spec, dx, settings);
   if (spec.adaptive && r.status != "error") add_adaptive_results(spec, dx, settings, r);
+  if (r.status != "error") add_dry_twin_results(spec, dx, settings, r);
   return r;
 }
 

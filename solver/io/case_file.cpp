@@ -48,6 +48,7 @@ void read_sand(JsonObject o, CaseSpec& c) {
   s.rest_density = o.positive("rest_density");
   s.friction_angle_deg = o.in_range("friction_angle", 0.0, 90.0, true);
   s.cohesion = o.non_negative("cohesion", 0.0);
+  s.wet_cohesion_loss = o.boolean("wet_cohesion_loss", true);
   s.viscosity = o.non_negative("viscosity", 0.0);
   s.wall_friction = o.has("wall_friction") ? o.non_negative("wall_friction", 0.0) : -1.0;
   s.contact_damping = o.non_negative("contact_damping", 0.5);

@@ -80,6 +80,19 @@ std::vector<PressureRole> pressure_roles(const ParticleSet<D>& ps, const Work<D>
 
 /// Saturation (eq 21), porosity (eq 24), capillary potential (eq 23) and pore pressure (eq 25)
 /// of porous particles; the saturated-porous view of water particles.
+/// Pore water that moving sand squeezed out: when the sand compressed since the last step (its
+/// pore volume φ V falls with the density, eq 24) and m_p exceeds the pores' capacity ρ^f φ V, the
+/// excess moves to the emission store (given to neighbouring water or emitted as new particles like
+/// any emitted water), so that the raw saturation m_p/(ρ^f φ V) never exceeds 1 and free + stored +
+/// absorbed water is unchanged. Ours: the limiters of eq 30 keep S <= 1 only for a fixed volume.
+template <int D>
+void squeeze_out(ParticleSet<D>& ps, std::size_t i, double capacity) {
+  const double excess = ps.absorbed[i] - capacity;
+  if (excess <= 0.0) return;
+  ps.absorbed[i] = capacity;
+  ps.emit_store[i] += excess;
+}
+
 template <int D>
 void fill_slots(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, double dt, Work<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
@@ -103,6 +116,7 @@ void fill_slots(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, doub
     const bool fixed = ps.phase_of(i) == Phase::Boundary;
     const double V = fixed ? std::pow(p.spacing, D) : ps.volume(i);
     ps.porosity[i] = fixed ? p.porosity : porosity(p.porosity, ps.rho0[i], ps.rho[i]);
+    if (!fixed) squeeze_out(ps, i, rho_f * ps.porosity[i] * V);
     const double S = saturation(ps.absorbed[i], rho_f, ps.porosity[i], V);
     ps.saturation[i] = S;
     ps.capillary[i] = capillary_potential(S, p.capillary_constant, p.capillary_exponent);

@@ -6,6 +6,7 @@
 #include "sand/strain_rate.hpp"
 #include "sand/yield.hpp"
 #include "porous/effective_stress.hpp"
+#include "porous/wet_cohesion.hpp"
 #include "water/pressure_force.hpp"
 #include "water/viscosity_force.hpp"
 
@@ -54,7 +55,8 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
                                         stress_scale, pore_stiffness, ps.saturation[i]);  // eq 32
     const double L = rigid_length(ps, i, sand);
     ps.strain_rate[i] = Dr.norm();
-    ps.rigid[i] = is_rigid<D>(rigid_stress<D>(Dr, ps.rho[i], L, dt), p, sin_phi, sand.cohesion, strength) ? 1 : 0;
+    const double c = sand.wet_cohesion_loss ? wet_cohesion(sand.cohesion, ps.saturation[i]) : sand.cohesion;
+    ps.rigid[i] = is_rigid<D>(rigid_stress<D>(Dr, ps.rho[i], L, dt), p, sin_phi, c, strength) ? 1 : 0;
     if (!ps.rigid[i] || !sand.rigid_clusters) stress[i] = -frictional_stress<D>(Dr, p, sin_phi);
   }
 }

@@ -35,7 +35,8 @@ inline double granular_pressure(double p, double rho0, double gravity, double sp
 /// Writes ps.rigid, ps.strain_rate and stress[i] (zero for non-sand particles).
 /// Wet sand (porous flow): friction and yield use Terzaghi's effective pressure of
 /// [thesis eq. 32], p' = max(0, p − η k^p S) with η = stress_scale, k^p = pore_stiffness and the
-/// particle's saturation S (solver/porous/effective_stress.hpp); dry sand (S = 0) keeps p.
+/// particle's saturation S (solver/porous/effective_stress.hpp); dry sand (S = 0) keeps p. With
+/// sand.wet_cohesion_loss the cohesion of the yield test is c0 (1 − S) (solver/porous/wet_cohesion.hpp).
 template <int D>
 void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double gravity,
                        double dt, MatArray<D>& stress, double stress_scale = 0.0, double pore_stiffness = 0.0);

@@ -3,11 +3,14 @@
 // Lube et al. 2005 and Lajeunesse et al. 2005 runout laws). At the end of the run:
 //   runout_normalised       (L∞ − L0)/L0, L∞ the 99th percentile of sand x from the back wall;
 //   back_wall_height_ratio  height of the deposit within two spacings of the back wall / H0;
-//   rest_energy_ratio       final kinetic energy / its peak (the deposit must be at rest).
+//   rest_energy_ratio       final kinetic energy / its peak (the deposit must be at rest);
+// with porous sand and water (wet_sand_collapse), also the water balance of REFERENCES.md §8:
+//   water_balance_rel_error, saturation_violation (porous_probe.hpp).
 // Series: the final surface profile against the initial column and the reference bands.
 #include <cmath>
 
 #include "observer.hpp"
+#include "observers/porous_probe.hpp"
 #include "observers/sand_deposit.hpp"
 
 namespace sc {
@@ -36,6 +39,11 @@ class ColumnCollapseObserver : public Observer<D> {
     peak_energy_ = std::max(peak_energy_, e);
     time_.push_back(sim.time());
     energy_.push_back(e);
+    if (sim.params().porous && (water_.has_value() || total_water(sim.particles()) > 0.0)) {
+      if (!water_) water_.emplace();
+      water_->sample(sim);
+      water_total_.push_back(total_water(sim.particles()));
+    }
   }
 
   ObserverResult finish(const Simulator<D>& sim) override {
@@ -47,6 +55,10 @@ class ColumnCollapseObserver : public Observer<D> {
     add_metric(r, limits_, "runout_normalised", (runout - L0_) / L0_);
     add_metric(r, limits_, "back_wall_height_ratio", back / H0_);
     add_metric(r, limits_, "rest_energy_ratio", peak_energy_ > 0.0 ? energy_.back() / peak_energy_ : NAN);
+    if (water_) {
+      add_metric(r, limits_, "water_balance_rel_error", water_->relative_error());
+      add_metric(r, limits_, "saturation_violation", water_->saturation_violation());
+    }
     std::vector<double> xs, hs;
     for (std::size_t k = 0; k < columns_; ++k) {
       xs.push_back((k + 0.5) * dx_ / L0_);
@@ -63,6 +75,11 @@ class ColumnCollapseObserver : public Observer<D> {
                  {"runout_band", "runout band (Lube 2005 / Lajeunesse 2005)", "line"},
                  {"back_wall_band", "back wall H0 ± 5% (Bui 2008)", "markers"}}},
                {"energy.png", "Kinetic energy of the sand", "t [s]", "E / E_peak", {{"energy_sim", "SPH", "line"}}}};
+    if (water_) {
+      r.series.push_back({"water_balance_sim", "t [s]", "relative change of free + absorbed water", time_, water_change()});
+      r.plots.push_back({"water_balance.png", "Water balance (REFERENCES.md §8: exact)", "t [s]",
+                         "(W(t) - W(0)) / W(0)", {{"water_balance_sim", "free + absorbed water", "line"}}});
+    }
     return r;
   }
 
@@ -73,12 +90,20 @@ class ColumnCollapseObserver : public Observer<D> {
     return out;
   }
 
+  std::vector<double> water_change() const {
+    std::vector<double> out;
+    for (double w : water_total_) out.push_back(w / water_total_.front() - 1.0);
+    return out;
+  }
+
   double dx_, wall_, floor_, L0_, H0_;
   std::size_t columns_;
   std::vector<double> runout_band_;
   double peak_energy_ = 0.0;
   std::vector<double> time_, energy_;
   std::map<std::string, MetricLimit> limits_;
+  std::optional<WaterBalanceProbe<D>> water_;  ///< runs with porous sand and water only
+  std::vector<double> water_total_;            ///< free + absorbed water at every sample
 };
 
 }  // namespace

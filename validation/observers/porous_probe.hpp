@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "porous/porous_flow.hpp"
+#include "observers/line_fit.hpp"
 #include "simulator/simulator.hpp"
 
 namespace sc {
@@ -58,14 +59,6 @@ std::vector<double> row_means(const ParticleSet<D>& ps, const std::vector<double
   }
   for (std::size_t k = 0; k < rows; ++k) sum[k] = count[k] > 0.0 ? sum[k] / count[k] : NAN;
   return sum;
-}
-
-/// Least-squares slope of y(x).
-inline double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  const double n = static_cast<double>(x.size());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) { sx += x[k]; sy += y[k]; sxx += x[k] * x[k]; sxy += x[k] * y[k]; }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 }  // namespace sc

@@ -18,6 +18,7 @@ JsonObject validation_block(const ObserverContext& ctx) {
   o.mark_used("observer");
   o.mark_used("convergence");
   o.mark_used("uniform_twin");
+  o.mark_used("dry_twin");
   return o;
 }
 

@@ -1,11 +1,12 @@
 // Shared measurements of sand deposits (column collapse, angle of repose): kinetic energy, the free
-// surface as the top of the sand in columns one spacing wide, and straight-line fits.
+// surface as the top of the sand in columns one spacing wide.
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include "core/particle_set.hpp"
+#include "observers/line_fit.hpp"
 
 namespace sc {
 
@@ -48,17 +49,6 @@ std::vector<double> surface_heights(const ParticleSet<D>& ps, double x0, double 
     t = std::max(t, ps.x[i][D - 1] - floor + 0.5 * dx);
   }
   return top;
-}
-
-/// Least-squares slope of y against x.
-inline double fitted_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  const double n = static_cast<double>(x.size());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    sx += x[k]; sy += y[k]; sxx += x[k] * x[k]; sxy += x[k] * y[k];
-  }
-  const double den = n * sxx - sx * sx;
-  return den != 0.0 ? (n * sxy - sx * sy) / den : NAN;
 }
 
 }  // namespace sc
