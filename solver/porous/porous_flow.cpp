@@ -40,7 +40,7 @@ double spacing_of(const ParticleSet<D>& ps, std::size_t i, const PorousParams& p
 template <int D>
 void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, Work<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     w.porous[i] = porous_at(ps, i);
     const bool water = ps.phase_of(i) == Phase::Water;
@@ -97,7 +97,7 @@ template <int D>
 void fill_slots(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, double dt, Work<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
   const double rho_f = p.fluid_density;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
     ExchangeSlot<D>& s = w.slot[i];
@@ -139,7 +139,7 @@ void set_contact_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const 
                           const Work<D>& w) {
   const std::vector<double> column = water_column_pressure(ps, p.spacing, p.water_mass, p.fluid_density, g.norm());
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i)
     if (w.contact[i] && ps.phase_of(i) == Phase::Boundary)
       ps.pore_pressure[i] = pond_pressure(ps, nb, column, i, p.fluid_density, g);
@@ -154,7 +154,7 @@ void pore_velocities(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porou
                      Work<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
   const bool capillary = p.capillary_constant != 0.0;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
     if (!w.porous[i]) {
@@ -197,7 +197,7 @@ template <int D>
 void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
               Work<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     w.exposed[i] = 0;
     w.placeable[i] = 0;
@@ -231,7 +231,7 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
   std::vector<std::size_t> start(ps.size() + 1, 0);
   for (std::size_t i = 0; i < ps.size(); ++i) start[i + 1] = start[i] + nb.of(i).size();
   std::vector<double> to(start.back(), 0.0), from(start.back(), 0.0);  // Φ_{i→j}, Φ_{j→i}
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
     double out = w.ghost[i], in = 0.0;
@@ -254,7 +254,7 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
   // m_p <= capacity still holds); without it a saturated particle in a steady flow stays short of
   // S = 1 by one step's inflow, which costs (β + 1) times that in relative permeability.
   std::vector<double> relaxed(ps.size(), 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
     double out = w.ghost[i] * w.a[i];
@@ -263,7 +263,7 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
     relaxed[i] = inflow_scale(w.slot[i].mass - dt * out, w.slot[i].capacity, w.in[i], dt);
   }
   w.b.swap(relaxed);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
     double out = w.ghost[i] * w.a[i], in = 0.0;
@@ -299,7 +299,7 @@ void update_rigid_pore_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, 
 template <int D>
 void diffuse_literal(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double dt, Work<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
     double rate = 0.0;

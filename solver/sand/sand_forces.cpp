@@ -43,9 +43,9 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
   const double strength = yield_strength_factor(sand.yield_surface);
   const auto n = static_cast<std::int64_t>(ps.size());
   VecArrayOf<D> predicted(ps.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) predicted[i] = ps.moves(i) ? Vec<D>(ps.v[i] + (dt / ps.m[i]) * ps.force[i]) : ps.v[i];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     ps.rigid[i] = 0;
     ps.strain_rate[i] = 0.0;
@@ -67,7 +67,7 @@ void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandP
   wall_force.assign(ps.size(), Vec<D>::Zero());
   const bool corrected = water.gradient_correction && correction.size() == ps.size();
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!is_sand(ps.phase[i])) continue;
     const double Vi = ps.volume(i);
@@ -100,7 +100,7 @@ void add_frictional_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const
                            const MatArray<D>& correction) {
   const bool corrected = correction.size() == ps.size();
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!is_sand(ps.phase[i])) continue;
     Vec<D> f = Vec<D>::Zero();
@@ -118,7 +118,7 @@ template <int D>
 void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double sound_speed,
                             double dt) {
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (ps.phase_of(i) != Phase::Water) continue;
     Vec<D> f = Vec<D>::Zero();
@@ -135,7 +135,7 @@ void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, cons
 template <int D>
 void add_wall_friction(ParticleSet<D>& ps, const VecArrayOf<D>& wall_force, double mu, double dt) {
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i)
     if (is_sand(ps.phase[i])) ps.force[i] += wall_friction_force<D>(wall_force[i], ps.v[i], ps.force[i], ps.m[i], mu, dt);
 }
