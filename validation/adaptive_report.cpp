@@ -52,8 +52,6 @@ void compare_with_twin(const CaseSpec& spec, double dx, const RunSettings& setti
     add_metric(r, limits, n + "_vs_uniform_ratio", r.metrics.at(n).value / twin.observed.metrics.at(n).value);
   }
   add_metric(r, limits, "particle_ratio", twin.moving_particles_mean / run.moving_particles_mean);
-  add_metric(r, limits, "wall_time_ratio", twin.wall_seconds / run.wall_seconds);
-  add_metric(r, limits, "uniform_wall_seconds", twin.wall_seconds);
   add_metric(r, limits, "uniform_moving_particles_mean", twin.moving_particles_mean);
   overlay_twin(twin.moving_particles, "moving_particles", "uniform", "uniform (no adaptivity)", r);
 }

@@ -16,8 +16,8 @@ namespace sc {
 ///   <NAME without "_sim">_vs_uniform_rms: series_difference (relative RMS) of each named series,
 ///   <METRIC>_vs_uniform_ratio: the adaptive run's metric / the uniform run's,
 ///   particle_ratio: mean moving particles, uniform / adaptive,
-///   wall_time_ratio: wall seconds, uniform / adaptive (informational: speed is benchmarked,
-///   never gated),
+///   (no wall-time metric: timings vary run to run and would make baselines flaky; `sandcastle
+///   bench` compares the speed of an adaptive scene with its uniform twin),
 /// with the twin's series (prefixed "uniform_") overlaid on the plots, and a plot of the
 /// moving particles against time for both runs.
 void add_adaptive_results(const CaseSpec& spec, double dx, const RunSettings& settings, RunResult& run);
