@@ -111,15 +111,15 @@ BOOST_AUTO_TEST_CASE(density_offsets_make_density_continuous_across_a_pass) {
   ParticleSet<2> ps = slab(20);
   NeighbourGrid<2> nb;
   nb.rebuild(ps);
-  compute_density(ps, nb, kernel::DensityKernel::Spiky);
+  compute_density(ps, nb, kernel::DensityKernel::Spiky, 1000.0);
   AdaptivitySpec spec = water_spec();
   spec.forced = ForcedCycle{0.2, 1.0};
   AdaptAccount account;
   adapt_particles<2>(ps, nb, spec, 0.0, account);  // merge: the carried ρ is the pair's mass-weighted ρ
   const std::vector<double> carried = ps.rho;
   nb.rebuild(ps);
-  set_density_offsets(ps, nb, kernel::DensityKernel::Spiky);
-  compute_density(ps, nb, kernel::DensityKernel::Spiky);
+  set_density_offsets(ps, nb, kernel::DensityKernel::Spiky, 1000.0);
+  compute_density(ps, nb, kernel::DensityKernel::Spiky, 1000.0);
   double largest_jump = 0.0;
   for (std::size_t i = 0; i < ps.size(); ++i) largest_jump = std::max(largest_jump, std::abs(ps.rho[i] - carried[i]));
   BOOST_TEST(largest_jump > 10.0);  // summation alone jumps by > 1 % somewhere

@@ -84,7 +84,7 @@ Simulator<2> exchange_scene() {
 /// A 12 x 12 sand lattice in simple shear v = (rate y, 0) at pressure 4000 Pa, densities computed.
 void shear_sand(ParticleSet<2>& ps, NeighbourGrid<2>& nb, double rate) {
   nb.rebuild(ps);
-  compute_density(ps, nb, kernel::DensityKernel::Spiky);
+  compute_density(ps, nb, kernel::DensityKernel::Spiky, 1000.0);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     ps.v[i] = Vec<2>(rate * ps.x[i][1], 0.0);
     ps.p[i] = 4000.0;

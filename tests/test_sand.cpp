@@ -33,7 +33,7 @@ ParticleSet<2> sand_lattice(int n, double dx, double ratio = 2.0, double rho0 = 
 NeighbourGrid<2> neighbours_with_density(ParticleSet<2>& ps) {
   NeighbourGrid<2> nb;
   nb.rebuild(ps);
-  compute_density(ps, nb, kernel::DensityKernel::Spiky);
+  compute_density(ps, nb, kernel::DensityKernel::Spiky, 1000.0);
   return nb;
 }
 

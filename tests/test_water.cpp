@@ -69,9 +69,34 @@ BOOST_AUTO_TEST_CASE(density_eq_6_of_a_lattice_is_the_rest_density) {
   ParticleSet<2> ps = lattice(15, 0.01);
   NeighbourGrid<2> nb;
   nb.rebuild(ps);
-  compute_density(ps, nb, kernel::DensityKernel::Spiky);
+  compute_density(ps, nb, kernel::DensityKernel::Spiky, 1000.0);
   BOOST_TEST(ps.rho[centre_index(15)] == 1000.0, boost::test_tools::tolerance(1e-12));
   BOOST_TEST(ps.rho[0] < 800.0);  // a corner lacks neighbours
+}
+
+BOOST_AUTO_TEST_CASE(density_eq_6_of_water_on_sand_counts_the_grains_by_volume) {
+  // [thesis eq. 6] across phases: the lower half of a lattice turned into sand (ρ0 = 2650, mass
+  // scaled with it). A water particle at the interface reads the same density as in all-water
+  // (to round-off), while counted by mass it would read ~30 % more (the grains' mass).
+  ParticleSet<2> water = lattice(15, 0.01);
+  NeighbourGrid<2> nb;
+  nb.rebuild(water);
+  compute_density(water, nb, kernel::DensityKernel::Spiky, 1000.0);
+  ParticleSet<2> mixed = water;
+  for (std::size_t i = 0; i < mixed.size(); ++i)
+    if (mixed.x[i][1] < 0.07) {
+      mixed.phase[i] = static_cast<std::uint8_t>(Phase::Sand);
+      mixed.m[i] *= 2.65;
+      mixed.rho0[i] = 2650.0;
+    }
+  compute_density(mixed, nb, kernel::DensityKernel::Spiky, 1000.0);
+  const std::size_t above = centre_index(15);  // the row just above the sand (y = 0.075)
+  BOOST_TEST((mixed.phase_of(above) == Phase::Water));
+  BOOST_TEST(mixed.rho[above] == water.rho[above], boost::test_tools::tolerance(1e-12));
+  double by_mass = 0.0;
+  for (const auto j : nb.of(above))
+    by_mass += mixed.m[j] * kernel::density_kernel<2>(kernel::DensityKernel::Spiky, (mixed.x[above] - mixed.x[j]).norm(), mixed.h[above]);
+  BOOST_TEST(by_mass > 1.25 * water.rho[above]);
 }
 
 BOOST_AUTO_TEST_CASE(interpolation_eq_1_of_constant_and_linear_fields) {
@@ -80,7 +105,7 @@ BOOST_AUTO_TEST_CASE(interpolation_eq_1_of_constant_and_linear_fields) {
   ParticleSet<2> ps = lattice(15, 0.01);
   NeighbourGrid<2> nb;
   nb.rebuild(ps);
-  compute_density(ps, nb, kernel::DensityKernel::Poly6);
+  compute_density(ps, nb, kernel::DensityKernel::Poly6, 1000.0);
   std::vector<double> one(ps.size(), 1.0), lin(ps.size());
   for (std::size_t i = 0; i < ps.size(); ++i) lin[i] = 3.0 * ps.x[i][0] - 2.0 * ps.x[i][1];
   const std::size_t c = centre_index(15);
@@ -189,6 +214,24 @@ BOOST_AUTO_TEST_CASE(momentum_balance_eq_2_3_free_fall) {
   BOOST_TEST(dt == 0.001);
   BOOST_TEST(sim.particles().v[0][1] == -9.81 * dt, boost::test_tools::tolerance(1e-14));
   BOOST_TEST(acceleration<2>(Vec<2>(0.0, -0.981), 0.1)[1] == -9.81, boost::test_tools::tolerance(1e-14));
+}
+
+BOOST_AUTO_TEST_CASE(step_limit_follows_the_kernel_support_not_the_mass) {
+  // The CFL and force limits use the spacing h_i / support_ratio. A water particle drained to a
+  // tiny mass by porous absorption keeps its support, so the step stays dt = cfl dx / c; with a
+  // mass-based spacing (m/ρ0)^(1/D) it fell by 1e-9 here.
+  ParticleSet<2> ps = lattice(5, 0.01);
+  SimulationParams params;
+  params.cfl = 0.4;
+  params.dt_max = 1.0;
+  params.support_ratio = ps.h[0] / 0.01;
+  params.eos.sound_speed = 20.0;
+  params.gravity = {0.0, 0.0};
+  params.domain_min = {-1.0, -1.0};
+  params.domain_max = {1.0, 1.0};
+  ps.m[3] *= 1e-18;
+  Simulator<2> sim(ps, params);
+  BOOST_TEST(sim.stable_dt() == 0.4 * 0.01 / 20.0, boost::test_tools::tolerance(1e-12));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -20,6 +20,7 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
   p.density_window = spec.density_window;
   p.relax_until = spec.relax_until;
   p.relax_rate = spec.relax_rate;
+  p.support_ratio = spec.support_ratio;
   p.eos = spec.eos;
   p.water = spec.water;
   p.sand = spec.sand;
@@ -68,12 +69,15 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params)
 template <int D>
 double Simulator<D>::stable_dt() const {
   if (params_.cfl <= 0.0) return params_.dt_max;
-  // Length scale: the particle spacing (m/ρ0)^(1/D), not the kernel support, so the limits do not
-  // loosen when a case chooses a wider support.
+  // Length scale: the particle spacing h_i / support_ratio, not the kernel support, so the limits
+  // do not loosen when a case chooses a wider support. It is taken from the support, not from the
+  // mass ((m/ρ0)^(1/D)): a water particle being absorbed keeps its support while its mass goes to
+  // zero, and a mass-based spacing let one nearly empty particle collapse the step (dt → 1e-8 s in
+  // wet_sand_collapse). Split and merged particles carry the support of their level.
   double hmin = INFINITY, vmax = 0.0, amax = g_.norm();
   for (std::size_t i = 0; i < ps_.size(); ++i) {
     if (!ps_.moves(i)) continue;
-    hmin = std::min(hmin, std::pow(ps_.m[i] / ps_.rho0[i], 1.0 / D));
+    hmin = std::min(hmin, ps_.h[i] / params_.support_ratio);
     vmax = std::max(vmax, ps_.v[i].norm());
     amax = std::max(amax, ps_.force[i].norm() / ps_.m[i]);
   }
@@ -118,7 +122,7 @@ void Simulator<D>::compute_forces() {
 
 template <int D>
 void Simulator<D>::compute_densities() {
-  compute_density(ps_, nb_, params_.water.density_kernel);
+  compute_density(ps_, nb_, params_.water.density_kernel, params_.water.rest_density);
   if (params_.adaptive) add_density_offsets(ps_);
 }
 
@@ -199,7 +203,7 @@ void Simulator<D>::adapt() {
   auto t = timers_.time(Stage::Adaptive);
   adapt_particles<D>(ps_, nb_, *params_.adaptive, time_, adapt_account_);
   nb_.rebuild(ps_);
-  set_density_offsets(ps_, nb_, params_.water.density_kernel);
+  set_density_offsets(ps_, nb_, params_.water.density_kernel, params_.water.rest_density);
 }
 
 template <int D>

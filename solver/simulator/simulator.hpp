@@ -21,6 +21,7 @@ struct SimulationParams {
   double density_window = 0;  ///< blow-up guard on |ρ/ρ0 − 1| (0 = off)
   double relax_until = 0.0;   ///< [s] initial relaxation: velocities damped before this time
   double relax_rate = 0.0;    ///< [1/s] damping rate of the relaxation (v *= exp(−rate dt))
+  double support_ratio = 2.0; ///< kernel support h / particle spacing: the step limits' length is h_i / ratio
   EquationOfState eos;
   WaterParams water;
   SandParams sand;
