@@ -168,7 +168,7 @@ void Simulator<D>::integrate(double dt) {
 
 template <int D>
 double Simulator<D>::step() {
-  last_good_ = ps_;
+  last_good_.copy_from(ps_);
   compute_forces();
   const double dt = stable_dt();
   if (has_sand_) {
