@@ -32,4 +32,26 @@ BOOST_AUTO_TEST_CASE(checksum_sees_every_bit_of_position_and_velocity) {
   BOOST_TEST(ps.checksum() != a);
 }
 
+BOOST_AUTO_TEST_CASE(copy_from_equals_assignment) {
+  ParticleSet<3> a, b, c;
+  for (int k = 0; k < 1000; ++k) {
+    const std::size_t i = a.append();
+    a.x[i] = Vec<3>(k, 0.5 * k, -k);
+    a.v[i] = Vec<3>(1.0 / (k + 1), 0, 2);
+    a.m[i] = 1e-3 * k;
+  }
+  a.queue_remove(3);
+  a.additions().append();
+  for (int k = 0; k < 5; ++k) b.append();  // other sizes are replaced
+  b.copy_from(a);
+  c = a;
+  BOOST_TEST(b.checksum() == c.checksum());
+  BOOST_TEST(b.m == c.m);
+  BOOST_TEST(b.id == c.id);
+  BOOST_TEST(b.next_id() == c.next_id());
+  BOOST_TEST(b.compact() == c.compact());  // the queued removal and addition were copied
+  BOOST_TEST(b.size() == c.size());
+  BOOST_TEST(b.checksum() == c.checksum());
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -293,10 +293,11 @@ BOOST_AUTO_TEST_CASE(wet_sand_friction_uses_the_effective_pressure_eq_32) {
   SandParams sand;
   sand.rigid_clusters = false;
   MatArray<2> dry, dry_kp, wet;
-  update_sand_state(ps, nb, sand, 9.81, 1e-4, dry);
-  update_sand_state(ps, nb, sand, 9.81, 1e-4, dry_kp, 1.0, 3000.0);
+  VecArrayOf<2> predicted;
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, dry, predicted);
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, dry_kp, predicted, 1.0, 3000.0);
   for (auto& S : ps.saturation) S = 0.5;
-  update_sand_state(ps, nb, sand, 9.81, 1e-4, wet, 1.0, 3000.0);
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, wet, predicted, 1.0, 3000.0);
   BOOST_TEST(dry[kCentre].norm() > 0.0);
   BOOST_TEST((dry_kp[kCentre] - dry[kCentre]).norm() == 0.0);
   BOOST_TEST(wet[kCentre].norm() / dry[kCentre].norm() == (4000.0 - 0.5 * 3000.0) / 4000.0, boost::test_tools::tolerance(1e-12));
@@ -396,16 +397,17 @@ BOOST_AUTO_TEST_CASE(saturated_sand_loses_the_cohesion_that_held_it_rigid) {
   SandParams sand;
   sand.rigid_clusters = false;
   MatArray<2> stress;
-  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
+  VecArrayOf<2> predicted;
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress, predicted);
   BOOST_TEST(ps.rigid[kCentre] == 0);  // cohesionless: yields
   sand.cohesion = 1e6;
-  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress, predicted);
   BOOST_TEST(ps.rigid[kCentre] == 1);  // dry and cohesive: rigid
   for (auto& S : ps.saturation) S = 1.0;
-  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress, predicted);
   BOOST_TEST(ps.rigid[kCentre] == 0);  // saturated: the cohesion is gone
   sand.wet_cohesion_loss = false;
-  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress, predicted);
   BOOST_TEST(ps.rigid[kCentre] == 1);
 }
 

@@ -381,11 +381,11 @@ BOOST_AUTO_TEST_CASE(all_sand_forces_conserve_momentum) {
   water.viscosity = 0.2;
   MatArray<2> correction, stress;
   compute_gradient_corrections(ps, nb, correction);
-  VecArrayOf<2> wall;
+  VecArrayOf<2> wall, predicted;
   add_water_forces(ps, nb, water, correction);
   add_sand_forces(ps, nb, sand, water, 20.0, 1e-4, correction, wall);
   add_water_sand_contact(ps, nb, sand, 20.0, 1e-4);
-  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress);
+  update_sand_state(ps, nb, sand, 9.81, 1e-4, stress, predicted);
   add_frictional_forces(ps, nb, stress, correction);
   Vec<2> total = Vec<2>::Zero();
   double scale = 0.0;

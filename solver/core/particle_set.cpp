@@ -35,6 +35,17 @@ ParticleSet<D>& ParticleSet<D>::additions() {
 }
 
 template <int D>
+template <class F>
+void ParticleSet<D>::visit_fields_with(const ParticleSet& other, F&& f) {
+  visit_fields([&other, &f](std::string_view name, auto& field) {
+    other.visit_fields([&](std::string_view other_name, const auto& src) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(field)>, std::decay_t<decltype(src)>>)
+        if (name == other_name) f(field, src);
+    });
+  });
+}
+
+template <int D>
 bool ParticleSet<D>::compact() {
   bool changed = false;
   if (remove_flag_.size() == size()) {
@@ -52,12 +63,7 @@ bool ParticleSet<D>::compact() {
   remove_flag_.clear();
   if (!additions_.empty() && additions_.front().size() > 0) {
     ParticleSet& add = additions_.front();
-    visit_fields([&add](std::string_view name, auto& field) {
-      add.visit_fields([&](std::string_view other, auto& src) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(field)>, std::decay_t<decltype(src)>>)
-          if (name == other) field.insert(field.end(), src.begin(), src.end());
-      });
-    });
+    visit_fields_with(add, [](auto& field, const auto& src) { field.insert(field.end(), src.begin(), src.end()); });
     next_id_ = add.next_id_;
     additions_.clear();
     changed = true;
@@ -74,6 +80,19 @@ void ParticleSet<D>::permute(const std::vector<std::size_t>& order) {
     for (std::int64_t k = 0; k < n; ++k) out[k] = field[order[k]];
     field.swap(out);
   });
+}
+
+template <int D>
+void ParticleSet<D>::copy_from(const ParticleSet& other) {
+  visit_fields_with(other, [](auto& field, const auto& src) {
+    field.resize(src.size());
+    const auto n = static_cast<std::int64_t>(src.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t k = 0; k < n; ++k) field[k] = src[k];
+  });
+  remove_flag_ = other.remove_flag_;
+  additions_ = other.additions_;
+  next_id_ = other.next_id_;
 }
 
 template <int D>

@@ -82,6 +82,9 @@ class ParticleSet {
   bool compact();
   /// Reorders every field: new index k holds old particle order[k].
   void permute(const std::vector<std::size_t>& order);
+  /// Makes this a copy of `other` (as operator=, reusing this set's storage), copying the fields in
+  /// parallel: the blow-up guard copies the whole state every step.
+  void copy_from(const ParticleSet& other);
   /// Bytes of all positions and velocities hashed (FNV-1a 64), as 16 hex digits.
   std::string checksum() const;
 
@@ -89,6 +92,10 @@ class ParticleSet {
   void set_next_id(std::int64_t n) { next_id_ = n; }
 
  private:
+  /// Calls f(field, other's field of the same name) for every field.
+  template <class F>
+  void visit_fields_with(const ParticleSet& other, F&& f);
+
   std::vector<std::uint8_t> remove_flag_;
   std::vector<ParticleSet> additions_;  // zero or one element (a class cannot hold itself)
   std::int64_t next_id_ = 0;

@@ -70,16 +70,24 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
 // Scans the rows of 3 cells along x around particle i's cell in a fixed order (rows, then x), so
 // the list comes out ordered by cell. A non-inert particle scans each row as one range of sorted_
 // (the cells of a row are adjacent there); an inert one only the non-inert part of each cell.
-// The scan writes every candidate and advances past it only if it is a neighbour (no branch to
-// mispredict), into room reserved for all candidates.
+// Rows and end cells farther from x_i than the cell size (a bound on every pair's support) hold
+// no neighbour and are skipped, which leaves the list unchanged. The scan writes every candidate
+// and advances past it only if it is a neighbour (no branch to mispredict), into room reserved
+// for all candidates.
 template <int D>
 void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out) const {
   const Vec<D> xi = ps.x[i];
   const double hi = ps.h[i];
   std::array<std::int64_t, D> c0{};
-  for (int d = 0; d < D; ++d)
+  std::array<std::array<double, 3>, D> gap2{};  // squared distance from x_i to the cells at offset -1, 0, +1
+  for (int d = 0; d < D; ++d) {
     c0[d] = std::min<std::int64_t>(dims_[d] - 1, static_cast<std::int64_t>((xi[d] - lo_[d]) / cell_));
-  const std::int64_t x_first = std::max<std::int64_t>(c0[0] - 1, 0), x_last = std::min(c0[0] + 1, dims_[0] - 1);
+    const double below = std::max(0.0, xi[d] - (lo_[d] + c0[d] * cell_));
+    const double above = std::max(0.0, lo_[d] + (c0[d] + 1) * cell_ - xi[d]);
+    gap2[d] = {below * below, 0.0, above * above};
+  }
+  // Reach with a margin far above the rounding of the cell bounds, so no neighbour is ever cut.
+  const double reach2 = (cell_ * (1.0 + 1e-6)) * (cell_ * (1.0 + 1e-6));
   std::array<std::uint32_t, 27> begin{}, end{};
   std::size_t ranges = 0, candidates = 0;
   auto add_range = [&](std::uint32_t b, std::uint32_t e) {
@@ -92,12 +100,16 @@ void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i
   while (true) {
     bool inside = true;
     std::int64_t row = 0;  // linear index of the row's cell at x = 0
+    double row_gap2 = 0.0;
     for (int d = D - 1; d >= 1; --d) {
       const std::int64_t k = c0[d] + off[d];
       if (k < 0 || k >= dims_[d]) { inside = false; break; }
       row = row * dims_[d] + k;
+      row_gap2 += gap2[d][off[d] + 1];
     }
-    if (inside) {
+    if (inside && row_gap2 <= reach2) {
+      const std::int64_t x_first = c0[0] > 0 && row_gap2 + gap2[0][0] <= reach2 ? c0[0] - 1 : c0[0];
+      const std::int64_t x_last = c0[0] + 1 < dims_[0] && row_gap2 + gap2[0][2] <= reach2 ? c0[0] + 1 : c0[0];
       row *= dims_[0];
       if (!inert_[i])
         add_range(slot_start_[2 * (row + x_first)], slot_start_[2 * (row + x_last) + 2]);

@@ -36,6 +36,8 @@ class NeighbourGrid {
   std::span<const std::uint32_t> of(std::size_t i) const {
     return {index_.data() + offset_[i], index_.data() + offset_[i + 1]};
   }
+  /// Position of of(i) in the concatenation of all lists (for data kept per list entry).
+  std::size_t list_start(std::size_t i) const { return offset_[i]; }
   std::size_t size() const { return offset_.empty() ? 0 : offset_.size() - 1; }
   std::size_t total_pairs() const { return index_.size(); }
   /// A cache-friendly order for ParticleSet::permute, from the last bin(): the non-inert

@@ -19,14 +19,6 @@ constexpr double kContactDistance = 1.5;  // spacings: a porous particle this cl
 constexpr double kSaturated = 0.99;    // a fixed porous particle with S at least this holds pore-water pressure
 
 template <int D>
-struct Work {
-  std::vector<ExchangeSlot<D>> slot;
-  std::vector<std::uint8_t> part, porous, exposed, placeable, seepage, contact;
-  std::vector<double> pc, pp, ghost, in, a, b;
-  typename ParticleSet<D>::VecArray target;
-};
-
-template <int D>
 bool porous_at(const ParticleSet<D>& ps, std::size_t i) { return is_porous_phase(ps.phase_of(i), ps.porosity[i]); }
 
 template <int D>
@@ -38,7 +30,7 @@ double spacing_of(const ParticleSet<D>& ps, std::size_t i, const PorousParams& p
 /// a water neighbour closer than kContactDistance spacings are in contact with free water (the
 /// body's surface row, not the row under it).
 template <int D>
-void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, Work<D>& w) {
+void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -67,15 +59,15 @@ void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
 /// - moving (deformable) sand: Lenaerts' eq 25;
 /// - saturated, fixed, none of the above: harmonic, solved.
 template <int D>
-std::vector<PressureRole> pressure_roles(const ParticleSet<D>& ps, const Work<D>& w) {
-  std::vector<PressureRole> role(ps.size(), PressureRole::None);
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (!w.porous[i]) continue;
+void pressure_roles(const ParticleSet<D>& ps, PorousWork<D>& w) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+  w.role.resize(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
     const bool saturated = ps.absorbed[i] + ps.emit_store[i] >= kSaturated * w.slot[i].capacity;
     const bool solved = ps.phase_of(i) == Phase::Boundary && !w.contact[i] && !w.seepage[i] && saturated;
-    role[i] = solved ? PressureRole::Unknown : PressureRole::Prescribed;
+    w.role[i] = !w.porous[i] ? PressureRole::None : solved ? PressureRole::Unknown : PressureRole::Prescribed;
   }
-  return role;
 }
 
 /// Saturation (eq 21), porosity (eq 24), capillary potential (eq 23) and pore pressure (eq 25)
@@ -94,17 +86,20 @@ void squeeze_out(ParticleSet<D>& ps, std::size_t i, double capacity) {
 }
 
 template <int D>
-void fill_slots(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, double dt, Work<D>& w) {
+void fill_slots(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, double dt, PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
   const double rho_f = p.fluid_density;
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
     ExchangeSlot<D>& s = w.slot[i];
+    s = ExchangeSlot<D>{};
     s.x = ps.x[i];
     s.h = ps.h[i];
     s.height = g.norm() > 0.0 ? -ps.x[i].dot(g) / g.norm() : 0.0;
     if (!w.porous[i]) {
+      w.pc[i] = 0.0;  // water in contact counts as saturated
+      w.pp[i] = 0.0;
       s.mass = ps.m[i];
       s.capacity = p.water_mass;
       s.flow_factor = 1.0;
@@ -136,7 +131,10 @@ void fill_slots(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, doub
 /// The pond's pressure at fixed porous particles in contact with water (pressure_roles).
 template <int D>
 void set_contact_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
-                          const Work<D>& w) {
+                          const PorousWork<D>& w) {
+  bool any = false;
+  for (std::size_t i = 0; i < ps.size() && !any; ++i) any = w.contact[i] && ps.phase_of(i) == Phase::Boundary;
+  if (!any) return;
   const std::vector<double> column = water_column_pressure(ps, p.spacing, p.water_mass, p.fluid_density, g.norm());
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(dynamic, 256)
@@ -151,7 +149,7 @@ void set_contact_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const 
 /// contact (pair_flow) and have no pore velocity.
 template <int D>
 void pore_velocities(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
-                     Work<D>& w) {
+                     PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
   const bool capillary = p.capillary_constant != 0.0;
 #pragma omp parallel for schedule(dynamic, 256)
@@ -161,8 +159,7 @@ void pore_velocities(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porou
       ps.pore_velocity[i] = Vec<D>::Zero();
       continue;
     }
-    const Vec<D> grad_c = capillary ? porous_gradient(ps, nb, w.pc, w.part, i, p.gradient) : Vec<D>::Zero();
-    const Vec<D> grad_p = porous_gradient(ps, nb, w.pp, w.porous, i, p.gradient);
+    const auto [grad_p, grad_c] = porous_gradients(ps, nb, w.pp, w.porous, w.pc, w.part, capillary, i, p.gradient);
     ps.pore_velocity[i] = pore_velocity<D>(p.permeability, p.fluid_viscosity, ps.porosity[i], grad_p, grad_c,
                                            p.fluid_density, g);
     w.slot[i].pore_velocity = ps.pore_velocity[i];
@@ -195,7 +192,7 @@ bool place_free(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_
 /// is the atmosphere's, pressure_roles), whatever v_p is now.
 template <int D>
 void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
-              Work<D>& w) {
+              PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -219,27 +216,29 @@ void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porous
 }
 
 template <int D>
-bool exchanges(const Work<D>& w, std::size_t i, std::size_t j) {
+bool exchanges(const PorousWork<D>& w, std::size_t i, std::size_t j) {
   return j != i && w.part[j] && (w.porous[i] || w.porous[j]);
 }
 
 /// Conserving diffusion (28′): raw flows (kept per neighbour-list entry), limiter scales,
 /// limited update (eq 30).
 template <int D>
-void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, double dt, Work<D>& w) {
+void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, double dt, PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
-  std::vector<std::size_t> start(ps.size() + 1, 0);
-  for (std::size_t i = 0; i < ps.size(); ++i) start[i + 1] = start[i] + nb.of(i).size();
-  std::vector<double> to(start.back(), 0.0), from(start.back(), 0.0);  // Φ_{i→j}, Φ_{j→i}
+  w.to.resize(nb.total_pairs());
+  w.from.resize(nb.total_pairs());
+  std::vector<double>&to = w.to, &from = w.from;
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
+    w.a[i] = w.b[i] = 0.0;
     if (!w.part[i]) continue;
     double out = w.ghost[i], in = 0.0;
-    std::size_t k = start[i];
+    std::size_t k = nb.list_start(i);
     for (const auto j : nb.of(i)) {
-      if (exchanges(w, i, j)) {
-        to[k] = pair_flow(w.slot[i], w.slot[j], p.flux_length_factor);
-        from[k] = pair_flow(w.slot[j], w.slot[i], p.flux_length_factor);
+      const bool pair = exchanges(w, i, j);
+      to[k] = pair ? pair_flow(w.slot[i], w.slot[j], p.flux_length_factor) : 0.0;
+      from[k] = pair ? pair_flow(w.slot[j], w.slot[i], p.flux_length_factor) : 0.0;
+      if (pair) {
         out += to[k];
         in += from[k];
       }
@@ -253,21 +252,21 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
   // outflow under the first limits (outflows only grow when the limits are relaxed, so the bound
   // m_p <= capacity still holds); without it a saturated particle in a steady flow stays short of
   // S = 1 by one step's inflow, which costs (β + 1) times that in relative permeability.
-  std::vector<double> relaxed(ps.size(), 0.0);
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
+    w.relaxed[i] = 0.0;
     if (!w.part[i]) continue;
     double out = w.ghost[i] * w.a[i];
-    std::size_t k = start[i];
+    std::size_t k = nb.list_start(i);
     for (const auto j : nb.of(i)) out += to[k++] * std::min(w.a[i], w.b[j]);
-    relaxed[i] = inflow_scale(w.slot[i].mass - dt * out, w.slot[i].capacity, w.in[i], dt);
+    w.relaxed[i] = inflow_scale(w.slot[i].mass - dt * out, w.slot[i].capacity, w.in[i], dt);
   }
-  w.b.swap(relaxed);
+  w.b.swap(w.relaxed);
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
     double out = w.ghost[i] * w.a[i], in = 0.0;
-    std::size_t k = start[i];
+    std::size_t k = nb.list_start(i);
     for (const auto j : nb.of(i)) {
       out += to[k] * std::min(w.a[i], w.b[j]);
       in += from[k] * std::min(w.a[j], w.b[i]);
@@ -286,18 +285,18 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
 /// Pore-water pressure of fixed porous particles for the next step (pressure_roles).
 template <int D>
 void update_rigid_pore_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
-                                const Work<D>& w) {
-  const std::vector<PressureRole> role = pressure_roles(ps, w);
+                                PorousWork<D>& w) {
+  pressure_roles(ps, w);
   for (std::size_t i = 0; i < ps.size(); ++i)
-    if (role[i] == PressureRole::Prescribed && ps.phase_of(i) == Phase::Boundary && !w.contact[i])
+    if (w.role[i] == PressureRole::Prescribed && ps.phase_of(i) == Phase::Boundary && !w.contact[i])
       ps.pore_pressure[i] = 0.0;
-  solve_harmonic_pressure(ps, nb, role, p.fluid_density, g, ps.pore_pressure);
+  solve_harmonic_pressure(ps, nb, w.role, p.fluid_density, g, ps.pore_pressure);
 }
 
 /// The literal eq 28 (switch "lenaerts_literal"): each particle integrates its own rate and is
 /// clamped to [0, capacity]; water is neither conserved nor emitted into empty space.
 template <int D>
-void diffuse_literal(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double dt, Work<D>& w) {
+void diffuse_literal(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double dt, PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -316,7 +315,7 @@ void diffuse_literal(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double dt, 
 /// sits deep in tension, has zero pressure and lets the pond sink into the porous bed (measured in
 /// darcy_column); with it the particle is at rest where a full one would be.
 template <int D>
-void rest_density_of_water(ParticleSet<D>& ps, const PorousParams& p, const Work<D>& w) {
+void rest_density_of_water(ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w) {
   const double self = kernel::density_kernel<D>(p.density_kernel, 0.0, p.water_support);
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (w.part[i] && !w.porous[i]) ps.rho0[i] = p.fluid_density - (p.water_mass - ps.m[i]) * self;
@@ -325,7 +324,7 @@ void rest_density_of_water(ParticleSet<D>& ps, const PorousParams& p, const Work
 /// Deletes water particles that are (nearly) empty, giving their rest to the porous neighbour
 /// with the most room (kept if none has room). Serial, index order.
 template <int D>
-std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Work<D>& w) {
+std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const PorousWork<D>& w) {
   std::size_t count = 0;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (!w.part[i] || w.porous[i] || ps.m[i] >= p.min_water_fraction * p.water_mass) continue;
@@ -349,7 +348,7 @@ std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const P
 /// whose target still holds departing water waits); returns stores of particles that are no
 /// longer exposed to m_p (as far as they have room). Serial, index order.
 template <int D>
-std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const Work<D>& w) {
+std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w) {
   std::size_t count = 0;
   typename ParticleSet<D>::VecArray placed;
   for (std::size_t i = 0; i < ps.size(); ++i) {
@@ -383,13 +382,12 @@ std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const Work<D>& w
 
 template <int D>
 PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& params,
-                             const Vec<D>& gravity, double dt) {
+                             const Vec<D>& gravity, double dt, PorousWork<D>& w) {
   const std::size_t n = ps.size();
-  Work<D> w;
-  w.slot.assign(n, ExchangeSlot<D>{});
-  w.part.assign(n, 0); w.porous.assign(n, 0); w.exposed.assign(n, 0); w.placeable.assign(n, 0); w.seepage.assign(n, 0); w.contact.assign(n, 0);
-  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b}) v->assign(n, 0.0);
-  w.target.assign(n, Vec<D>::Zero());
+  w.slot.resize(n);
+  for (auto* v : {&w.part, &w.porous, &w.exposed, &w.placeable, &w.seepage, &w.contact}) v->resize(n);
+  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b, &w.relaxed}) v->resize(n);
+  w.target.resize(n);
   mark_participants(ps, nb, params, w);
   fill_slots(ps, params, gravity, dt, w);
   set_contact_pressure(ps, nb, params, gravity, w);
@@ -416,8 +414,10 @@ double total_water(const ParticleSet<D>& ps) {
   return sum;
 }
 
-template PorousStepCounts porous_step<2>(ParticleSet<2>&, const NeighbourGrid<2>&, const PorousParams&, const Vec<2>&, double);
-template PorousStepCounts porous_step<3>(ParticleSet<3>&, const NeighbourGrid<3>&, const PorousParams&, const Vec<3>&, double);
+template PorousStepCounts porous_step<2>(ParticleSet<2>&, const NeighbourGrid<2>&, const PorousParams&, const Vec<2>&, double,
+                                         PorousWork<2>&);
+template PorousStepCounts porous_step<3>(ParticleSet<3>&, const NeighbourGrid<3>&, const PorousParams&, const Vec<3>&, double,
+                                         PorousWork<3>&);
 template double total_water<2>(const ParticleSet<2>&);
 template double total_water<3>(const ParticleSet<3>&);
 

@@ -29,7 +29,9 @@
 #pragma once
 #include "core/particle_set.hpp"
 #include "neighbours/neighbour_grid.hpp"
+#include "porous/diffusion.hpp"
 #include "porous/porous_params.hpp"
+#include "porous/rigid_pore_pressure.hpp"
 
 namespace sc {
 
@@ -39,12 +41,24 @@ struct PorousStepCounts {
   std::size_t created = 0;   ///< water particles created by emission
 };
 
+/// Per-particle and per-pair buffers of porous_step, held between steps so that a step does not
+/// allocate (they are resized, and every entry a step reads is written by that step).
+template <int D>
+struct PorousWork {
+  std::vector<ExchangeSlot<D>> slot;
+  std::vector<std::uint8_t> part, porous, exposed, placeable, seepage, contact;
+  std::vector<double> pc, pp, ghost, in, a, b, relaxed;
+  std::vector<double> to, from;  // Φ_{i→j}, Φ_{j→i} per neighbour-list entry
+  std::vector<PressureRole> role;
+  typename ParticleSet<D>::VecArray target;
+};
+
 /// Advances the absorbed water by dt. Deletions and creations are queued in `ps` (applied by
 /// compact()). Fixed porous particles (boundary phase) keep φ = φ0; their P^p is the pore-water
 /// pressure of a rigid skeleton (pond pressure in contact, storage relaxation when saturated).
 template <int D>
 PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& params,
-                             const Vec<D>& gravity, double dt);
+                             const Vec<D>& gravity, double dt, PorousWork<D>& work);
 
 /// Water in the scene [kg]: water particle mass plus absorbed water (m_p and emission stores).
 template <int D>

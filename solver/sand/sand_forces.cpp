@@ -37,18 +37,20 @@ std::pair<ContactLaw, double> pair_contact(const ParticleSet<D>& ps, std::size_t
 
 template <int D>
 void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double gravity,
-                       double dt, MatArray<D>& stress, double stress_scale, double pore_stiffness) {
-  stress.assign(ps.size(), Mat<D>::Zero());
+                       double dt, MatArray<D>& stress, VecArrayOf<D>& predicted, double stress_scale,
+                       double pore_stiffness) {
+  stress.resize(ps.size());
+  predicted.resize(ps.size());
   const double sin_phi = sand.sin_phi();
   const double strength = yield_strength_factor(sand.yield_surface);
   const auto n = static_cast<std::int64_t>(ps.size());
-  VecArrayOf<D> predicted(ps.size());
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) predicted[i] = ps.moves(i) ? Vec<D>(ps.v[i] + (dt / ps.m[i]) * ps.force[i]) : ps.v[i];
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     ps.rigid[i] = 0;
     ps.strain_rate[i] = 0.0;
+    stress[i].setZero();
     if (!is_sand(ps.phase[i])) continue;
     const Mat<D> Dr = strain_rate<D>(velocity_gradient(ps, nb, i, &predicted));
     const double p = effective_pressure(granular_pressure(ps.p[i], ps.rho0[i], gravity, rest_spacing<D>(ps.m[i], ps.rho0[i])),
@@ -64,11 +66,12 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
 template <int D>
 void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, const WaterParams& water,
                      double sound_speed, double dt, const MatArray<D>& correction, VecArrayOf<D>& wall_force) {
-  wall_force.assign(ps.size(), Vec<D>::Zero());
+  wall_force.resize(ps.size());
   const bool corrected = water.gradient_correction && correction.size() == ps.size();
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
+    wall_force[i].setZero();
     if (!is_sand(ps.phase[i])) continue;
     const double Vi = ps.volume(i);
     Vec<D> f = Vec<D>::Zero(), wall = Vec<D>::Zero();
@@ -142,7 +145,7 @@ void add_wall_friction(ParticleSet<D>& ps, const VecArrayOf<D>& wall_force, doub
 
 #define SC_INSTANTIATE(D)                                                                                         \
   template void update_sand_state<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, double, double, \
-                                     MatArray<D>&, double, double);                                               \
+                                     MatArray<D>&, VecArrayOf<D>&, double, double);                                            \
   template void add_sand_forces<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, const WaterParams&, \
                                    double, double, const MatArray<D>&, VecArrayOf<D>&);                                   \
   template void add_frictional_forces<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const MatArray<D>&,             \

@@ -32,14 +32,16 @@ inline double granular_pressure(double p, double rho0, double gravity, double sp
 /// gravity and pressure: a column at rest must still feel that it is about to collapse), the yield
 /// test (eq 10) with the rigid stress (eq 12a) for step dt, and the tension-positive stress
 /// Σ_i = −σ_f (eq 8) of flowing particles (zero for rigid ones, whose motion is the cluster's).
-/// Writes ps.rigid, ps.strain_rate and stress[i] (zero for non-sand particles).
+/// Writes ps.rigid, ps.strain_rate and stress[i] (zero for non-sand particles); `predicted` is the
+/// buffer of v* (resized, held by the caller so that a step does not allocate).
 /// Wet sand (porous flow): friction and yield use Terzaghi's effective pressure of
 /// [thesis eq. 32], p' = max(0, p − η k^p S) with η = stress_scale, k^p = pore_stiffness and the
 /// particle's saturation S (solver/porous/effective_stress.hpp); dry sand (S = 0) keeps p. With
 /// sand.wet_cohesion_loss the cohesion of the yield test is c0 (1 − S) (solver/porous/wet_cohesion.hpp).
 template <int D>
 void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand, double gravity,
-                       double dt, MatArray<D>& stress, double stress_scale = 0.0, double pore_stiffness = 0.0);
+                       double dt, MatArray<D>& stress, VecArrayOf<D>& predicted, double stress_scale = 0.0,
+                       double pore_stiffness = 0.0);
 
 /// Adds the frictional force between sand particles (eq 19′) of the stresses Σ = −σ_f, with the
 /// symmetrised kernel-gradient correction (L_i + L_j)/2 of the pressure force when `correction` is

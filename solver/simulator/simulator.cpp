@@ -143,7 +143,7 @@ template <int D>
 void Simulator<D>::compute_sand_forces() {
   add_sand_forces(ps_, nb_, params_.sand, params_.water, params_.eos.sound_speed, last_dt_, correction_, wall_force_);
   add_water_sand_contact(ps_, nb_, params_.sand, params_.eos.sound_speed, last_dt_);
-  update_sand_state(ps_, nb_, params_.sand, g_.norm(), last_dt_, sand_stress_,
+  update_sand_state(ps_, nb_, params_.sand, g_.norm(), last_dt_, sand_stress_, predicted_velocity_,
                     params_.porous ? params_.porous->stress_scale : 0.0, params_.porous ? params_.porous->pore_stiffness : 0.0);
   add_frictional_forces(ps_, nb_, sand_stress_, params_.water.gradient_correction ? correction_ : MatArray<D>{});
 }
@@ -172,7 +172,7 @@ void Simulator<D>::integrate(double dt) {
 
 template <int D>
 double Simulator<D>::step() {
-  last_good_ = ps_;
+  last_good_.copy_from(ps_);
   compute_forces();
   const double dt = stable_dt();
   if (has_sand_) {
@@ -184,7 +184,7 @@ double Simulator<D>::step() {
   last_dt_ = dt;
   if (params_.porous) {  // thesis Fig. 3.6 line 7: absorption and emission (solver/porous/)
     auto t = timers_.time(Stage::Porous);
-    porous_step(ps_, nb_, *params_.porous, g_, dt);
+    porous_step(ps_, nb_, *params_.porous, g_, dt, porous_work_);
   }
   ps_.compact();
   try {

@@ -9,6 +9,7 @@
 #include "core/stage_timers.hpp"
 #include "io/case_file.hpp"
 #include "neighbours/neighbour_grid.hpp"
+#include "porous/porous_flow.hpp"
 #include "sand/clusters.hpp"
 #include "sand/sand_forces.hpp"
 #include "sph/gradient_correction.hpp"
@@ -89,7 +90,9 @@ class Simulator {
   NeighbourGrid<D> nb_;
   MatArray<D> correction_;  // kernel-gradient corrections of the current step
   MatArray<D> sand_stress_;   // tension-positive frictional stress −σ_f of each sand particle (eq 8)
+  VecArrayOf<D> predicted_velocity_;  // v* of the yield test (update_sand_state)
   VecArrayOf<D> wall_force_;  // push of rough walls on each sand particle (normal of the wall friction)
+  PorousWork<D> porous_work_;  // buffers of the porous step
   Clusters clusters_;         // rigid sand clusters of the current step
   bool has_sand_ = false;
   double last_dt_ = 0.0;      // step size of the previous step (the rigid stress, eq 12a, needs one)
