@@ -65,6 +65,27 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
     xs_[k] = ps.x[i];
     hs_[k] = ps.h[i];
   }
+  mark_cells_near_moving(cells);
+}
+
+// near_moving_[c]: a non-inert particle lies in the 3^D block of cells around c. One pass per
+// dimension, each widening the mark by one cell along it.
+template <int D>
+void NeighbourGrid<D>::mark_cells_near_moving(std::int64_t cells) {
+  near_moving_.resize(cells);
+  spread_.resize(cells);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < cells; ++c) near_moving_[c] = slot_start_[2 * c + 1] > slot_start_[2 * c];
+  std::int64_t stride = 1;
+  for (int d = 0; d < D; ++d) {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t c = 0; c < cells; ++c) {
+      const std::int64_t k = (c / stride) % dims_[d];
+      spread_[c] = near_moving_[c] | (k > 0 && near_moving_[c - stride]) | (k + 1 < dims_[d] && near_moving_[c + stride]);
+    }
+    near_moving_.swap(spread_);
+    stride *= dims_[d];
+  }
 }
 
 // Scans the rows of 3 cells along x around particle i's cell in a fixed order (rows, then x), so
@@ -76,6 +97,7 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
 // for all candidates.
 template <int D>
 void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out) const {
+  if (inert_[i] && !near_moving_[slot_of_[i] / 2]) return;  // no non-inert particle within reach
   const Vec<D> xi = ps.x[i];
   const double hi = ps.h[i];
   std::array<std::int64_t, D> c0{};
@@ -145,8 +167,10 @@ template <int D>
 void NeighbourGrid<D>::find_pairs(const ParticleSet<D>& ps) {
   const std::size_t n = ps.size();
   offset_.assign(n + 1, 0);
-  index_.clear();
-  if (n == 0) return;
+  if (n == 0) {
+    index_.clear();
+    return;
+  }
   const auto chunks = static_cast<std::int64_t>((n + kChunk - 1) / kChunk);
   chunk_lists_.resize(chunks);
 #pragma omp parallel for schedule(dynamic, 1)
@@ -166,7 +190,7 @@ void NeighbourGrid<D>::find_pairs(const ParticleSet<D>& ps) {
     for (std::size_t i = c * kChunk; i < end; ++i) offset_[i + 1] += base;
     base = offset_[end];
   }
-  index_.resize(base);
+  index_.resize(base);  // every entry is overwritten below
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t c = 0; c < chunks; ++c)
     std::copy(chunk_lists_[c].begin(), chunk_lists_[c].end(), index_.begin() + offset_[c * kChunk]);

@@ -46,6 +46,7 @@ class NeighbourGrid {
 
  private:
   void append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out) const;
+  void mark_cells_near_moving(std::int64_t cells);
 
   std::vector<std::size_t> offset_;
   std::vector<std::uint32_t> index_;
@@ -54,6 +55,7 @@ class NeighbourGrid {
   std::vector<std::uint32_t> slot_start_; // start in sorted_ of slot 2c (non-inert of cell c) and 2c + 1 (inert)
   std::vector<std::uint64_t> slot_of_;    // slot of each particle
   std::vector<std::uint8_t> inert_;
+  std::vector<std::uint8_t> near_moving_, spread_;  // per cell: a non-inert particle in the 3^D block (bin)
   typename ParticleSet<D>::VecArray xs_;  // positions in sorted_ order
   std::vector<double> hs_;                // support radii in sorted_ order
   std::array<std::int64_t, D> dims_{};

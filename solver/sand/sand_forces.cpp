@@ -103,12 +103,15 @@ void add_frictional_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const
                            const MatArray<D>& correction) {
   const bool corrected = correction.size() == ps.size();
   const auto n = static_cast<std::int64_t>(ps.size());
+  // A pair of unstressed particles (rigid ones) adds ±0 to f, which starts at +0, so skipping it
+  // leaves f bitwise unchanged.
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!is_sand(ps.phase[i])) continue;
+    const bool unstressed = stress[i].isZero(0.0);
     Vec<D> f = Vec<D>::Zero();
     for (const auto j : nb.of(i)) {
-      if (j == static_cast<std::size_t>(i) || !is_sand(ps.phase[j])) continue;
+      if (j == static_cast<std::size_t>(i) || !is_sand(ps.phase[j]) || (unstressed && stress[j].isZero(0.0))) continue;
       const Vec<D> d = ps.x[i] - ps.x[j];
       const Vec<D> fp = frictional_pair_force<D>(ps.volume(i), ps.volume(j), stress[i], stress[j], d, d.norm(), ps.h[i], ps.h[j]);
       f += corrected ? Vec<D>(0.5 * (correction[i] + correction[j]) * fp) : fp;

@@ -13,20 +13,6 @@ namespace sc {
 template <int D>
 using MatArray = std::vector<Mat<D>, Eigen::aligned_allocator<Mat<D>>>;
 
-/// Weight w = clamp((λ − none)/(full − none), 0, 1) of the smallest eigenvalue λ of the symmetric
-/// moment matrix S. The eigenvalue solve is skipped where its outcome is certain, which leaves the
-/// result bitwise unchanged: w = 1 when S − (full + δ) I has a Cholesky factor (then λ > full by
-/// far more than the solver's rounding), w = 0 when a diagonal entry (a Rayleigh quotient, so at
-/// least λ) is below none − δ. Most particles are interior ones with w = 1.
-template <int D>
-double correction_weight(const Mat<D>& S, double none, double full) {
-  constexpr double margin = 1e-6;  // S is dimensionless, ≈ I in the interior
-  if (Eigen::LLT<Mat<D>>(S - (full + margin) * Mat<D>::Identity()).info() == Eigen::Success) return 1.0;
-  if (S.diagonal().minCoeff() < none - margin) return 0.0;
-  const double lambda = Eigen::SelfAdjointEigenSolver<Mat<D>>(S, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
-  return std::clamp((lambda - none) / (full - none), 0.0, 1.0);
-}
-
 /// Correction matrix L_i = (Σ_j V_j ∇W_ij ⊗ (x_j − x_i))⁻¹ with the spiky gradient averaged over
 /// both supports, so that Σ_j V_j (A_j − A_i) L_i ∇W_ij = ∇A exactly for a linear field A.
 /// Where the neighbourhood is incomplete (free surface) the moment matrix loses rank; there L_i
@@ -45,7 +31,9 @@ Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
     const Vec<D> grad = kernel::pair_average([&](double h) { return kernel::spiky_gradient<D>(d, r, h); }, ps.h[i], ps.h[j]);
     M += ps.volume(j) * grad * (-d).transpose();
   }
-  const double w = correction_weight<D>(0.5 * (M + M.transpose()), none, full);
+  const Mat<D> S = 0.5 * (M + M.transpose());
+  const double lambda = Eigen::SelfAdjointEigenSolver<Mat<D>>(S, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  const double w = std::clamp((lambda - none) / (full - none), 0.0, 1.0);
   if (w == 0.0) return Mat<D>::Identity();
   return (1.0 - w) * Mat<D>::Identity() + w * M.inverse();
 }
