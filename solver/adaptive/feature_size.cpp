@@ -193,15 +193,21 @@ FeatureSize<D> feature_size(const BackgroundGrid<D>& grid, const std::vector<dou
                             const FeatureSizeParams& params) {
   FeatureSize<D> out;
   out.surface = surface_samples<D>(grid, f);
-  // Nothing beyond elfs_max from the surface can change a clamped elfs: every propagation stops there.
+  // Nothing beyond elfs_max from the surface can change a clamped elfs: the elfs propagation stops
+  // there. The medial axis matters only through min(lfs, lfs_max), and a medial point at depth d
+  // is at least d from every surface sample, so the first two propagations stop at lfs_max + 2
+  // cells (the axis-neighbour nodes around a medial point, and the cell corners of a sample, are
+  // within a cell diagonal of it).
   const double reach = params.elfs_max;
-  const Propagation closest = propagate<D>(grid, out.surface, std::vector<double>(out.surface.size(), 0.0), reach);
+  const double medial_reach = std::min(reach, params.lfs_max + 2.0 * grid.dx);
+  const Propagation closest =
+      propagate<D>(grid, out.surface, std::vector<double>(out.surface.size(), 0.0), medial_reach);
   out.distance = closest.value;
   for (std::size_t k = 0; k < f.size(); ++k)
     if (f[k] < 0.0) out.distance[k] = -out.distance[k];
   out.medial_axis = medial_axis<D>(grid, out.surface, closest, params);
   const Propagation to_medial =
-      propagate<D>(grid, out.medial_axis, std::vector<double>(out.medial_axis.size(), 0.0), reach);
+      propagate<D>(grid, out.medial_axis, std::vector<double>(out.medial_axis.size(), 0.0), medial_reach);
   out.lfs = lfs_at_samples<D>(grid, out.surface, out.medial_axis, to_medial);
   std::vector<double> seed = out.lfs;
   for (double& s : seed) s = std::min(s, params.lfs_max);
