@@ -51,14 +51,14 @@ double decision_band(const AdaptiveParams& p, double r_min, double grid_cell) {
 }
 
 template <int D>
-void derive_adaptivity(AdaptivitySpec& spec, double spacing, double finest_volume, double finest_support) {
+void derive_adaptivity(AdaptivitySpec& spec, double spacing, double finest_volume) {
   AdaptiveParams& p = spec.params;
   p.finest_volume = finest_volume;
-  p.finest_support = finest_support;
   const double r_min = std::pow(finest_volume, 1.0 / D);
   spec.grid_cell *= spacing;
   spec.feature.elfs_min = 0.5 * p.alpha * r_min;
   spec.feature.elfs_max = decision_band<D>(p, r_min, spec.grid_cell);
+  spec.feature.outside_reach = 2.0 * spec.grid_cell;
   spec.feature.lfs_max *= spacing;
   check_params<D>(p);
 }
@@ -191,7 +191,6 @@ void adapt_particles(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Adapt
   const Totals before = totals(ps);
   const std::vector<double> elfs = decision_elfs<D>(ps, spec, t);
   const AdaptStats stats = adapt_pass<D>(ps, elfs, spec.params, [&](std::size_t i) { return nb.of(i); });
-  snap_support_radii<D>(ps.additions(), spec.params);
   ps.compact();
   ++account.passes;
   account.splits += stats.splits;
@@ -202,7 +201,7 @@ void adapt_particles(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Adapt
 
 #define SC_ADAPTIVITY_INSTANTIATE(D)                                                                     \
   template double decision_band<D>(const AdaptiveParams&, double, double);                               \
-  template void derive_adaptivity<D>(AdaptivitySpec&, double, double, double);                                 \
+  template void derive_adaptivity<D>(AdaptivitySpec&, double, double);                                 \
   template std::vector<double> particle_elfs<D>(const ParticleSet<D>&, const AdaptivitySpec&);           \
   template void adapt_particles<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const AdaptivitySpec&, double, \
                                    AdaptAccount&);

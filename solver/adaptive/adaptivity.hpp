@@ -52,12 +52,11 @@ AdaptivitySpec read_adaptivity(JsonObject o, int dim);
 template <int D>
 double decision_band(const AdaptiveParams& params, double r_min, double grid_cell);
 
-/// Derives the spacing-dependent values: finest_volume = level-0 m / rho0, finest_support = the
-/// level-0 support radius (the scene's h, so level-0 particles share the walls' h bit for bit),
-/// the background grid cell, the lfs cap (given in spacings) and the elfs clamps [alpha r_min / 2,
-/// decision_band].
+/// Derives the spacing-dependent values: finest_volume = level-0 m / rho0, the background grid
+/// cell, the lfs cap (given in spacings), the elfs clamps [alpha r_min / 2, decision_band] and
+/// the outside reach of the elfs (2 cells).
 template <int D>
-void derive_adaptivity(AdaptivitySpec& spec, double spacing, double finest_volume, double finest_support);
+void derive_adaptivity(AdaptivitySpec& spec, double spacing, double finest_volume);
 
 /// What the passes of a run did, and how well they conserved what they must.
 struct AdaptAccount {

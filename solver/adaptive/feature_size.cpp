@@ -89,10 +89,13 @@ std::array<int, D> corner(std::array<int, D> base, int mask) {
   return base;
 }
 
-// Nodes whose value would exceed `reach` are not visited (value infinite, source -1).
+// Nodes whose value would exceed `reach` are not visited (value infinite, source -1), nor, when
+// `f` is given, nodes outside the region (f >= 0) further than `outside_reach` from their source.
 template <int D>
 Propagation propagate(const BackgroundGrid<D>& grid, const Points<D>& sources,
-                      const std::vector<double>& offsets, double reach) {
+                      const std::vector<double>& offsets, double reach,
+                      const std::vector<double>* f = nullptr,
+                      double outside_reach = std::numeric_limits<double>::infinity()) {
   Propagation p{std::vector<double>(grid.size(), std::numeric_limits<double>::infinity()),
                 std::vector<std::int64_t>(grid.size(), -1)};
   using Item = std::pair<double, std::size_t>;
@@ -100,9 +103,11 @@ Propagation propagate(const BackgroundGrid<D>& grid, const Points<D>& sources,
   auto relax = [&](const std::array<int, D>& c, std::size_t s) {
     Vec<D> x = grid.origin;
     for (int d = 0; d < D; ++d) x[d] += c[d] * grid.dx;
-    const double v = offsets[s] + (x - sources[s]).norm();
+    const double distance = (x - sources[s]).norm();
+    const double v = offsets[s] + distance;
     const std::size_t k = grid.index(c);
     if (!(v < p.value[k]) || v > reach) return;
+    if (f && (*f)[k] >= 0.0 && distance > outside_reach) return;
     p.value[k] = v;
     p.source[k] = static_cast<std::int64_t>(s);
     queue.emplace(v, k);
@@ -211,7 +216,7 @@ FeatureSize<D> feature_size(const BackgroundGrid<D>& grid, const std::vector<dou
   out.lfs = lfs_at_samples<D>(grid, out.surface, out.medial_axis, to_medial);
   std::vector<double> seed = out.lfs;
   for (double& s : seed) s = std::min(s, params.lfs_max);
-  out.elfs = propagate<D>(grid, out.surface, seed, reach).value;
+  out.elfs = propagate<D>(grid, out.surface, seed, reach, &f, params.outside_reach).value;
   for (double& e : out.elfs) e = std::min(std::max(e, params.elfs_min), params.elfs_max);
   return out;
 }

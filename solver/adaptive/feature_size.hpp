@@ -56,6 +56,11 @@ struct FeatureSizeParams {
   /// smooth body may be coarse up to its surface). Finite: elfs = min_y (min(lfs(y), lfs_max) +
   /// |x - y|), so the surface stays fine and particles grow with depth (Persson's size function).
   double lfs_max = std::numeric_limits<double>::infinity();
+  /// elfs is computed outside the region (f >= 0) only this far from the surface [m]; further out
+  /// it is left at elfs_max. Runs sample elfs only at particles, each inside its own ball, so
+  /// only the corners of their cells matter: within a cell diagonal outside (derive_adaptivity
+  /// sets 2 cells). Where the water is a block, two thirds of the 3-D grid lie outside.
+  double outside_reach = std::numeric_limits<double>::infinity();
 };
 
 template <int D>

@@ -138,21 +138,6 @@ Decision decide(double elfs, double mass, double rest_density, const AdaptivePar
 }
 
 template <int D>
-double level_support(int level, const AdaptiveParams& params) {
-  return level == 0 ? params.finest_support
-                    : params.finest_support * std::pow(2.0, static_cast<double>(level) / D);
-}
-
-template <int D>
-void snap_support_radii(ParticleSet<D>& ps, const AdaptiveParams& params) {
-  if (!(params.finest_support > 0.0)) return;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    const double h = level_support<D>(level_of<D>(ps.m[i], ps.rho0[i], params), params);
-    if (std::abs(ps.h[i] - h) <= 1e-9 * h) ps.h[i] = h;
-  }
-}
-
-template <int D>
 Vec<D> split_direction(const Vec<D>& x, double delta, std::span<const Vec<D>> others) {
   const auto axes = candidate_axes<D>();
   Vec<D> best = axes.front();
@@ -196,8 +181,6 @@ double merge_pair(const ParticleSet<D>& from, std::size_t i, std::size_t j, Part
   template double particle_size<D>(double, double);                                             \
   template int level_of<D>(double, double, const AdaptiveParams&);                              \
   template Decision decide<D>(double, double, double, const AdaptiveParams&);                   \
-  template double level_support<D>(int, const AdaptiveParams&);                                  \
-  template void snap_support_radii<D>(ParticleSet<D>&, const AdaptiveParams&);                  \
   template Vec<D> split_direction<D>(const Vec<D>&, double, std::span<const Vec<D>>);          \
   template std::size_t split_particle<D>(const ParticleSet<D>&, std::size_t, const Vec<D>&,     \
                                          double, ParticleSet<D>&);                              \

@@ -40,8 +40,6 @@ struct AdaptiveParams {
   double finest_volume = 1.0;    ///< m / rho0 of a level-0 particle [m^D]
   double split_offset = 0.5;     ///< delta = split_offset * r_child
   double merge_distance = 1.5;   ///< merge only if |x_ij| < merge_distance * r (same level)
-  /// Support radius of a level-0 particle [m]; 0: no snapping (see snap_support_radii).
-  double finest_support = 0.0;
 };
 
 /// Throws std::invalid_argument unless 0 < alpha, beta >= 2^(1/D) alpha (no immediate re-merge
@@ -88,21 +86,6 @@ template <int D, class Neighbours>
 std::vector<std::pair<std::size_t, std::size_t>> pair_merge_candidates(
     const ParticleSet<D>& ps, const std::vector<std::size_t>& candidates,
     const AdaptiveParams& params, Neighbours&& neighbours);
-
-/// Support radius of level `level`: finest_support * 2^(level/D), level 0 exactly finest_support.
-template <int D>
-double level_support(int level, const AdaptiveParams& params);
-
-/// Sets the support radius of every particle of `ps` (the new particles of a pass) to the value
-/// of its level, level_support(level_of(m, rho0)), where it agrees with it to 1e-9 (the Size
-/// rule's result, a few ulps off after a chain of splits and merges); other particles are left
-/// alone, as is everything when params.finest_support is 0. Why: the Size rule's roundings make
-/// the supports of one level drift apart by ulps, and then every pair of the level takes the
-/// two-evaluation path of kernel::pair_average and misses the kernel-constant cache (measured on
-/// dam_break_adaptive: 16 distinct supports for 3 levels after 0.25 s). Snapping makes the supports
-/// of a level equal bit for bit (also to the walls at level 0); h carries no conserved quantity.
-template <int D>
-void snap_support_radii(ParticleSet<D>& ps, const AdaptiveParams& params);
 
 /// Counts and the kinetic energy one adaptivity pass removed.
 struct AdaptStats {

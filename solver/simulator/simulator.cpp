@@ -47,9 +47,9 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
     const double h = spec.support_ratio * spacing;
     const double rho0 = spec.water.rest_density;
     if (spec.dimension == 2)
-      derive_adaptivity<2>(*p.adaptive, spacing, lattice_mass<2>(rho0, spacing, h, spec.water.density_kernel) / rho0, h);
+      derive_adaptivity<2>(*p.adaptive, spacing, lattice_mass<2>(rho0, spacing, h, spec.water.density_kernel) / rho0);
     else
-      derive_adaptivity<3>(*p.adaptive, spacing, lattice_mass<3>(rho0, spacing, h, spec.water.density_kernel) / rho0, h);
+      derive_adaptivity<3>(*p.adaptive, spacing, lattice_mass<3>(rho0, spacing, h, spec.water.density_kernel) / rho0);
   }
   return p;
 }
