@@ -23,7 +23,7 @@ AdaptivitySpec water_spec(double lfs_cap_spacings = INFINITY) {
   AdaptivitySpec spec;
   spec.params.alpha = 2.0;
   spec.params.beta = 4.0;
-  spec.params.max_level = 4;  // elfs clamp 2 beta r_max = 0.28 m: above every value tested
+  spec.params.max_level = 6;  // elfs clamp max(alpha r_6, beta r_5) + 2 cells = 0.246 m: above every value tested
   spec.feature.lfs_max = lfs_cap_spacings;
   const double m = lattice_mass<2>(kRho0, kDx, 2.0 * kDx, kernel::DensityKernel::Spiky);
   derive_adaptivity<2>(spec, kDx, m / kRho0);

@@ -43,14 +43,22 @@ AdaptivitySpec read_adaptivity(JsonObject o, int dim) {
 }
 
 template <int D>
+double decision_band(const AdaptiveParams& p, double r_min, double grid_cell) {
+  const auto r_at = [&](int level) { return r_min * std::pow(2.0, static_cast<double>(level) / D); };
+  double band = p.max_level > p.min_level ? p.alpha * r_at(p.max_level) : 0.0;  // largest split threshold
+  if (p.max_level > p.min_level) band = std::max(band, p.beta * r_at(p.max_level - 1));  // largest merge threshold
+  return band + 2.0 * grid_cell;
+}
+
+template <int D>
 void derive_adaptivity(AdaptivitySpec& spec, double spacing, double finest_volume) {
   AdaptiveParams& p = spec.params;
   p.finest_volume = finest_volume;
   const double r_min = std::pow(finest_volume, 1.0 / D);
-  const double r_max = r_min * std::pow(2.0, static_cast<double>(p.max_level) / D);
-  spec.feature.elfs_min = 0.5 * p.alpha * r_min;
-  spec.feature.elfs_max = 2.0 * p.beta * r_max;
   spec.grid_cell *= spacing;
+  spec.feature.elfs_min = 0.5 * p.alpha * r_min;
+  spec.feature.elfs_max = decision_band<D>(p, r_min, spec.grid_cell);
+  spec.feature.outside_reach = 2.0 * spec.grid_cell;
   spec.feature.lfs_max *= spacing;
   check_params<D>(p);
 }
@@ -80,8 +88,14 @@ std::vector<double> union_of_balls(const ParticleSet<D>& ps, const AdaptivitySpe
     }
     std::array<int, D> c = lo;
     while (true) {
-      const std::size_t k = grid.index(c);
-      f[k] = std::min(f[k], (grid.node(k) - ps.x[i]).norm() - r);
+      // Node positions from the coordinates (grid.node(k) would divide k back into them).
+      Vec<D> node = grid.origin;
+      for (int d = 0; d < D; ++d) node[d] += c[d] * grid.dx;
+      const double q = (node - ps.x[i]).squaredNorm();
+      if (q < reach * reach) {  // farther nodes would get more than the cap grid.dx
+        const std::size_t k = grid.index(c);
+        f[k] = std::min(f[k], std::sqrt(q) - r);
+      }
       int d = 0;
       while (d < D && ++c[d] > hi[d]) c[d] = lo[d], ++d;
       if (d == D) break;
@@ -186,7 +200,8 @@ void adapt_particles(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Adapt
 }
 
 #define SC_ADAPTIVITY_INSTANTIATE(D)                                                                     \
-  template void derive_adaptivity<D>(AdaptivitySpec&, double, double);                                   \
+  template double decision_band<D>(const AdaptiveParams&, double, double);                               \
+  template void derive_adaptivity<D>(AdaptivitySpec&, double, double);                                 \
   template std::vector<double> particle_elfs<D>(const ParticleSet<D>&, const AdaptivitySpec&);           \
   template void adapt_particles<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const AdaptivitySpec&, double, \
                                    AdaptAccount&);

@@ -40,8 +40,21 @@ struct AdaptivitySpec {
 /// Reads the "adaptive" object; `dim` for the hysteresis bound beta >= 2^(1/D) alpha.
 AdaptivitySpec read_adaptivity(JsonObject o, int dim);
 
+/// The elfs values that can decide anything, [0, band): a particle splits only if elfs < alpha r
+/// (so below alpha r_max) and merges only if elfs > beta r at a level below max_level (so the
+/// answer above beta r_(max_level-1) is always the same), plus 2 grid cells: elfs is 1-Lipschitz,
+/// so when a particle's interpolated value is near a threshold, the grid nodes it is interpolated
+/// from lie within sqrt(D) cells of it, inside the band. Used as the clamp and reach elfs_max of the
+/// feature size (the narrow band: nodes further from the surface are not visited), so the
+/// propagations visit only the band in which a decision can change, and every decision is the one
+/// the unclamped elfs would give. (Was 2 beta r_max: for dam_break_adaptive 16 spacings instead of
+/// 7.7.) With max_level = min_level nothing splits or merges, and the band is 2 cells.
+template <int D>
+double decision_band(const AdaptiveParams& params, double r_min, double grid_cell);
+
 /// Derives the spacing-dependent values: finest_volume = level-0 m / rho0, the background grid
-/// cell, the lfs cap (given in spacings) and the elfs clamps [alpha r_min / 2, 2 beta r_max].
+/// cell, the lfs cap (given in spacings), the elfs clamps [alpha r_min / 2, decision_band] and
+/// the outside reach of the elfs (2 cells).
 template <int D>
 void derive_adaptivity(AdaptivitySpec& spec, double spacing, double finest_volume);
 

@@ -89,10 +89,13 @@ std::array<int, D> corner(std::array<int, D> base, int mask) {
   return base;
 }
 
-// Nodes whose value would exceed `reach` are not visited (value infinite, source -1).
+// Nodes whose value would exceed `reach` are not visited (value infinite, source -1), nor, when
+// `f` is given, nodes outside the region (f >= 0) further than `outside_reach` from their source.
 template <int D>
 Propagation propagate(const BackgroundGrid<D>& grid, const Points<D>& sources,
-                      const std::vector<double>& offsets, double reach) {
+                      const std::vector<double>& offsets, double reach,
+                      const std::vector<double>* f = nullptr,
+                      double outside_reach = std::numeric_limits<double>::infinity()) {
   Propagation p{std::vector<double>(grid.size(), std::numeric_limits<double>::infinity()),
                 std::vector<std::int64_t>(grid.size(), -1)};
   using Item = std::pair<double, std::size_t>;
@@ -100,9 +103,11 @@ Propagation propagate(const BackgroundGrid<D>& grid, const Points<D>& sources,
   auto relax = [&](const std::array<int, D>& c, std::size_t s) {
     Vec<D> x = grid.origin;
     for (int d = 0; d < D; ++d) x[d] += c[d] * grid.dx;
-    const double v = offsets[s] + (x - sources[s]).norm();
+    const double distance = (x - sources[s]).norm();
+    const double v = offsets[s] + distance;
     const std::size_t k = grid.index(c);
     if (!(v < p.value[k]) || v > reach) return;
+    if (f && (*f)[k] >= 0.0 && distance > outside_reach) return;
     p.value[k] = v;
     p.source[k] = static_cast<std::int64_t>(s);
     queue.emplace(v, k);
@@ -193,19 +198,25 @@ FeatureSize<D> feature_size(const BackgroundGrid<D>& grid, const std::vector<dou
                             const FeatureSizeParams& params) {
   FeatureSize<D> out;
   out.surface = surface_samples<D>(grid, f);
-  // Nothing beyond elfs_max from the surface can change a clamped elfs: every propagation stops there.
+  // Nothing beyond elfs_max from the surface can change a clamped elfs: the elfs propagation stops
+  // there. The medial axis matters only through min(lfs, lfs_max), and a medial point at depth d
+  // is at least d from every surface sample, so the first two propagations stop at lfs_max + 2
+  // cells (the axis-neighbour nodes around a medial point, and the cell corners of a sample, are
+  // within a cell diagonal of it).
   const double reach = params.elfs_max;
-  const Propagation closest = propagate<D>(grid, out.surface, std::vector<double>(out.surface.size(), 0.0), reach);
+  const double medial_reach = std::min(reach, params.lfs_max + 2.0 * grid.dx);
+  const Propagation closest =
+      propagate<D>(grid, out.surface, std::vector<double>(out.surface.size(), 0.0), medial_reach);
   out.distance = closest.value;
   for (std::size_t k = 0; k < f.size(); ++k)
     if (f[k] < 0.0) out.distance[k] = -out.distance[k];
   out.medial_axis = medial_axis<D>(grid, out.surface, closest, params);
   const Propagation to_medial =
-      propagate<D>(grid, out.medial_axis, std::vector<double>(out.medial_axis.size(), 0.0), reach);
+      propagate<D>(grid, out.medial_axis, std::vector<double>(out.medial_axis.size(), 0.0), medial_reach);
   out.lfs = lfs_at_samples<D>(grid, out.surface, out.medial_axis, to_medial);
   std::vector<double> seed = out.lfs;
   for (double& s : seed) s = std::min(s, params.lfs_max);
-  out.elfs = propagate<D>(grid, out.surface, seed, reach).value;
+  out.elfs = propagate<D>(grid, out.surface, seed, reach, &f, params.outside_reach).value;
   for (double& e : out.elfs) e = std::min(std::max(e, params.elfs_min), params.elfs_max);
   return out;
 }

@@ -51,17 +51,25 @@ struct FeatureSizeParams {
   double elfs_min = 0.0;     ///< clamp of elfs [m] (e.g. alpha * r_min)
   /// Also the reach of the computation: nodes further than elfs_max from the surface get
   /// distance ±infinity and elfs = elfs_max without being visited (their elfs is clamped anyway).
-  double elfs_max = std::numeric_limits<double>::infinity();  ///< (e.g. beta * r_max)
+  double elfs_max = std::numeric_limits<double>::infinity();  ///< (runs: decision_band, adaptivity.hpp)
   /// Cap of lfs on the surface before it is extended inwards [m]. Infinite: Adams' elfs (a large
   /// smooth body may be coarse up to its surface). Finite: elfs = min_y (min(lfs(y), lfs_max) +
   /// |x - y|), so the surface stays fine and particles grow with depth (Persson's size function).
   double lfs_max = std::numeric_limits<double>::infinity();
+  /// elfs is computed outside the region (f >= 0) only this far from the surface [m]; further out
+  /// it is left at elfs_max. Runs sample elfs only at particles, each inside its own ball, so
+  /// only the corners of their cells matter: within a cell diagonal outside (derive_adaptivity
+  /// sets 2 cells). Where the water is a block, two thirds of the 3-D grid lie outside.
+  double outside_reach = std::numeric_limits<double>::infinity();
 };
 
 template <int D>
 struct FeatureSize {
   using VecArray = std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>>;
-  std::vector<double> distance;  ///< signed distance to the surface at the nodes, < 0 inside [m]
+  /// Signed distance to the surface at the nodes, < 0 inside [m]; +-infinity beyond
+  /// min(elfs_max, lfs_max + 2 cells), the reach of the medial-axis search (medial points deeper
+  /// than lfs_max cannot change the capped lfs).
+  std::vector<double> distance;
   VecArray surface;              ///< surface samples y
   std::vector<double> lfs;       ///< local feature size at each surface sample [m]
   VecArray medial_axis;          ///< medial-axis points
