@@ -74,6 +74,29 @@ BOOST_AUTO_TEST_CASE(density_eq_6_of_a_lattice_is_the_rest_density) {
   BOOST_TEST(ps.rho[0] < 800.0);  // a corner lacks neighbours
 }
 
+BOOST_AUTO_TEST_CASE(density_eq_6_of_water_beside_sand_counts_the_sand_as_water) {
+  // [thesis eq. 6] at a water-sand interface (neighbour_density_mass): with the left half of a
+  // lattice turned into sand of twice the rest density (and twice the lattice mass), a water
+  // particle on the interface reads exactly the density of the all-water lattice when sand counts
+  // with its volume at ρ^f; with sand's own mass it reads far more (the Tait blow-up it caused).
+  ParticleSet<2> ps = lattice(15, 0.01);
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  compute_density(ps, nb, kernel::DensityKernel::Spiky, 1000.0);
+  const std::size_t c = centre_index(15);
+  const double all_water = ps.rho[c];
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.x[i][0] >= ps.x[c][0] - 0.005) continue;
+    ps.phase[i] = static_cast<std::uint8_t>(Phase::Sand);
+    ps.m[i] *= 2.0;
+    ps.rho0[i] = 2000.0;
+  }
+  compute_density(ps, nb, kernel::DensityKernel::Spiky, 1000.0);
+  BOOST_TEST(ps.rho[c] == all_water, boost::test_tools::tolerance(1e-12));
+  compute_density(ps, nb, kernel::DensityKernel::Spiky);
+  BOOST_TEST(ps.rho[c] > 1.05 * all_water);
+}
+
 BOOST_AUTO_TEST_CASE(interpolation_eq_1_of_constant_and_linear_fields) {
   // [thesis eq. 1] A(x_i) = Σ V_j A_j W_j: a constant field in the interior of a lattice is exact
   // (to the kernel's lattice error), and the Shepard-normalised linear field is exact.

@@ -19,11 +19,12 @@ namespace sc {
 
 /// After a split/merge pass: offset_i = ρ_i (carried) − Σ_j m_j W(x_ij, h_i) for moving particles.
 template <int D>
-void set_density_offsets(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, kernel::DensityKernel k) {
+void set_density_offsets(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, kernel::DensityKernel k,
+                         double water_rest_density = 0.0) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i)
-    if (ps.moves(i)) ps.density_offset[i] = ps.rho[i] - density_sum(ps, nb, i, k);
+    if (ps.moves(i)) ps.density_offset[i] = ps.rho[i] - density_sum(ps, nb, i, k, water_rest_density);
 }
 
 /// ρ_i += offset_i for moving particles (after the summation of the step).
