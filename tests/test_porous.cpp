@@ -10,6 +10,7 @@
 
 #include "porous/capillary.hpp"
 #include "porous/darcy.hpp"
+#include "porous/partial_water_pressure.hpp"
 #include "porous/diffusion.hpp"
 #include "porous/effective_stress.hpp"
 #include "porous/pore_pressure.hpp"
@@ -447,4 +448,41 @@ BOOST_AUTO_TEST_CASE(compressed_wet_sand_squeezes_out_pore_water_and_keeps_the_b
   BOOST_TEST(s_max <= 1.0 + 1e-12);
   BOOST_TEST(worst <= 1e-12);
 }
+BOOST_AUTO_TEST_CASE(partial_water_takes_the_pressure_of_the_water_around_it) {
+  // A partial particle (10 % of m0) at the centre of a full water lattice whose pressure is linear,
+  // p = 2000 + 5e4 x: it takes the Shepard average of its full neighbours, which on the symmetric
+  // lattice is exactly p at its position, whatever its own state equation said (1 MPa here). Full
+  // particles keep their pressure, and so does a partial particle with only sand around it.
+  const PorousParams p = test_params();
+  ParticleSet<2> ps;
+  add_block(ps, p, Phase::Water, {0.0, 0.0}, {0.13, 0.13}, 0.0);
+  const auto centre = static_cast<std::size_t>(6 * 13 + 6);  // the middle of the 13 x 13 block
+  const double expected = 2000.0 + 5e4 * ps.x[centre][0];
+  for (std::size_t i = 0; i < ps.size(); ++i) ps.p[i] = 2000.0 + 5e4 * ps.x[i][0];
+  ps.m[centre] = 0.1 * p.water_mass;
+  ps.p[centre] = 1e6;
+  const std::size_t lone = ps.append();  // partial water among sand, far from the water
+  ps.x[lone] = {0.5, 0.5};
+  ps.m[lone] = 0.3 * p.water_mass;
+  ps.h[lone] = p.water_support;
+  ps.rho[lone] = ps.rho0[lone] = kRho;
+  ps.p[lone] = 3e5;
+  for (const Vec<2>& dx : {Vec<2>(kDx, 0.0), Vec<2>(-kDx, 0.0), Vec<2>(0.0, kDx), Vec<2>(0.0, -kDx)}) {
+    const std::size_t k = ps.append();
+    ps.x[k] = ps.x[lone] + dx;
+    ps.m[k] = 2.0 * p.water_mass;
+    ps.h[k] = p.water_support;
+    ps.rho[k] = ps.rho0[k] = 2.0 * kRho;
+    ps.p[k] = 5000.0;
+    ps.phase[k] = static_cast<std::uint8_t>(Phase::Sand);
+  }
+  const std::vector<double> before = ps.p;
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  set_partial_water_pressure(ps, nb, p.water_mass);
+  BOOST_TEST(ps.p[centre] == expected, boost::test_tools::tolerance(1e-12));
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (i != centre) BOOST_TEST(ps.p[i] == before[i]);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -397,6 +397,43 @@ BOOST_AUTO_TEST_CASE(all_sand_forces_conserve_momentum) {
   BOOST_TEST(total.norm() < 1e-12 * scale);
 }
 
+BOOST_AUTO_TEST_CASE(partial_water_is_held_off_solid_walls_only) {
+  // add_partial_water_wall_contact: a partial water particle (10 % of m0) 3 mm from a wall particle
+  // (inside the contact distance (s_i + s_w)/2 ≈ 6.8 mm) is pushed straight away from it with
+  // k ξ; a full water particle at the same place, or the partial one at a porous wall, feels nothing.
+  const double m0 = 0.1, dx = 0.01, dt = 1e-3, c = 10.0;
+  ParticleSet<2> ps;
+  for (const Vec<2>& x : {Vec<2>(0.0, 0.0), Vec<2>(1.0, 0.0), Vec<2>(2.0, 0.0)}) {  // walls: solid, solid, porous
+    const std::size_t w = ps.append();
+    ps.x[w] = x;
+    ps.m[w] = m0;
+    ps.h[w] = 2.0 * dx;
+    ps.rho[w] = ps.rho0[w] = 1000.0;
+    ps.phase[w] = static_cast<std::uint8_t>(Phase::Boundary);
+  }
+  ps.porosity[2] = 0.4;
+  for (const Vec<2>& x : {Vec<2>(0.0, 0.003), Vec<2>(1.0, 0.003), Vec<2>(2.0, 0.003)}) {
+    const std::size_t i = ps.append();
+    ps.x[i] = x;
+    ps.m[i] = i == 4 ? m0 : 0.1 * m0;  // the one above the second wall is full
+    ps.h[i] = 2.0 * dx;
+    ps.rho[i] = 1000.0;
+    ps.rho0[i] = 1000.0 - (m0 - ps.m[i]) * 3000.0;
+    ps.phase[i] = static_cast<std::uint8_t>(Phase::Water);
+  }
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  SandParams sand;
+  add_partial_water_wall_contact(ps, nb, sand, c, dt, m0);
+  const double s = 0.5 * (rest_spacing<2>(0.1 * m0, ps.rho0[3]) + rest_spacing<2>(m0, 1000.0));
+  const ContactLaw law = contact_law(0.1 * m0, 0.0, s, c, sand.contact_damping, 0.0, dt);
+  BOOST_TEST(ps.force[3][0] == 0.0);
+  BOOST_TEST(ps.force[3][1] == law.stiffness * (s - 0.003), tt::tolerance(1e-12));
+  BOOST_TEST(ps.force[4].norm() == 0.0);
+  BOOST_TEST(ps.force[5].norm() == 0.0);
+  for (std::size_t w = 0; w < 3; ++w) BOOST_TEST(ps.force[w].norm() == 0.0);  // walls take no reaction
+}
+
 BOOST_AUTO_TEST_CASE(bell_contact_is_antisymmetric_and_dissipative) {
   // Bell et al. 2005 contact: f_ij = −f_ji; for a head-on approach the damping makes the rebound
   // slower than the approach (restitution < 1).

@@ -6,6 +6,7 @@
 #include "sand/strain_rate.hpp"
 #include "sand/yield.hpp"
 #include "porous/effective_stress.hpp"
+#include "porous/partial_water_pressure.hpp"
 #include "porous/wet_cohesion.hpp"
 #include "water/pressure_force.hpp"
 #include "water/viscosity_force.hpp"
@@ -139,6 +140,24 @@ void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, cons
 }
 
 template <int D>
+void add_partial_water_wall_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand,
+                                    double sound_speed, double dt, double full_water_mass) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!is_partial_water(ps, i, full_water_mass)) continue;
+    Vec<D> f = Vec<D>::Zero();
+    for (const auto j : nb.of(i)) {
+      if (ps.phase_of(j) != Phase::Boundary || ps.porosity[j] != 0.0) continue;
+      const Vec<D> d = ps.x[i] - ps.x[j];
+      const auto [law, s] = pair_contact(ps, i, j, sand, sound_speed, dt);
+      f += contact_force<D>(law, d, d.norm(), ps.v[i], ps.v[j], s);
+    }
+    ps.force[i] += f;
+  }
+}
+
+template <int D>
 void add_wall_friction(ParticleSet<D>& ps, const VecArrayOf<D>& wall_force, double mu, double dt) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(dynamic, 256)
@@ -155,6 +174,8 @@ void add_wall_friction(ParticleSet<D>& ps, const VecArrayOf<D>& wall_force, doub
                                          const MatArray<D>&);                                                     \
   template void add_water_sand_contact<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&, double,   \
                                           double);                                                                \
+  template void add_partial_water_wall_contact<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const SandParams&,     \
+                                                  double, double, double);                                        \
   template void add_wall_friction<D>(ParticleSet<D>&, const VecArrayOf<D>&, double, double);
 SC_INSTANTIATE(2)
 SC_INSTANTIATE(3)

@@ -70,6 +70,9 @@ class Simulator {
   /// Density of every moving particle: summation (eq 6) plus, in adaptive runs, the particle's
   /// decaying density offset (solver/adaptive/density_blend.hpp).
   void compute_densities();
+  /// Mass of a full water particle when light water particles are partial ones of the porous exchange
+  /// (porous flow without adaptive sampling), else 0.
+  double partial_water_mass() const;
   /// Neighbour lists of the current step, after putting the particles back in cell order every
   /// kSortEvery steps.
   void sort_and_find_neighbours();

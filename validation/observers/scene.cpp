@@ -4,8 +4,17 @@
 // the largest relative change over the run of all water, free (water particles) plus absorbed
 // (porous m_p and emission stores; REFERENCES.md §8: exact up to round-off); `free_water_fraction`,
 // the free water at the end over all water (informational: how much the sand drank).
+// Collapse of the sculpture (objective form of "standing where dry, collapsing where the water hits
+// it"): every sand particle is followed by its id from the start; it counts as wetted once its
+// saturation has reached kWetSaturation at some sample, and as displaced when it ends more than
+// kDisplacedSpacings particle spacings from where it started. `sand_displaced_fraction_wet` and
+// `sand_displaced_fraction_dry` are the displaced fractions of the wetted and of the never-wetted
+// sand, `sand_wetted_fraction` the wetted share of all sand. Their limits are applied only to a run
+// that reaches the case's time.end (the full tier); a shortened run (the quick smoke run) reports
+// them without a gate, since the water has not arrived yet.
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 
 #include "observer.hpp"
 #include "porous/porous_flow.hpp"
@@ -24,6 +33,7 @@ class SceneObserver : public Observer<D> {
   }
 
   void sample(const Simulator<D>& sim) override {
+    follow_sand(sim.particles());
     time_.push_back(sim.time());
     free_water_.push_back(free_water(sim.particles()));
     all_water_.push_back(total_water(sim.particles()));
@@ -36,6 +46,7 @@ class SceneObserver : public Observer<D> {
     for (double w : all_water_) balance = std::max(balance, std::abs(w - all_water_.front()));
     add_metric(r, limits_, "water_balance_rel_error", all_water_.front() > 0.0 ? balance / all_water_.front() : 0.0);
     add_metric(r, limits_, "free_water_fraction", all_water_.back() > 0.0 ? free_water_.back() / all_water_.back() : 0.0);
+    add_collapse_metrics(r, sim);
     r.series.push_back({"free_water_sim", "t [s]", "water mass [kg]", time_, free_water_});
     r.series.push_back({"all_water_sim", "t [s]", "water mass [kg]", time_, all_water_});
     r.plots.push_back({"water_mass.png", spec_.name + ": water balance", "t [s]", "mass [kg]",
@@ -44,6 +55,40 @@ class SceneObserver : public Observer<D> {
   }
 
  private:
+  static constexpr double kWetSaturation = 0.1;
+  static constexpr double kDisplacedSpacings = 2.0;
+
+  struct SandTrack {
+    Vec<D> start;
+    bool wetted = false;
+  };
+
+  void follow_sand(const ParticleSet<D>& ps) {
+    const bool first = time_.empty();
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (ps.phase_of(i) != Phase::Sand) continue;
+      if (first) sand_[ps.id[i]] = SandTrack{ps.x[i]};
+      if (ps.saturation[i] >= kWetSaturation) sand_.at(ps.id[i]).wetted = true;
+    }
+  }
+
+  void add_collapse_metrics(ObserverResult& r, const Simulator<D>& sim) const {
+    const ParticleSet<D>& ps = sim.particles();
+    double wet = 0.0, dry = 0.0, wet_moved = 0.0, dry_moved = 0.0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (ps.phase_of(i) != Phase::Sand) continue;
+      const SandTrack& t = sand_.at(ps.id[i]);
+      const bool moved = (ps.x[i] - t.start).norm() > kDisplacedSpacings * dx_;
+      (t.wetted ? wet : dry) += 1.0;
+      (t.wetted ? wet_moved : dry_moved) += moved ? 1.0 : 0.0;
+    }
+    const bool full_length = sim.time() >= spec_.end_time - 0.5 * spec_.dt_max;
+    const auto& limits = full_length ? limits_ : std::map<std::string, MetricLimit>{};
+    add_metric(r, limits, "sand_displaced_fraction_wet", wet > 0.0 ? wet_moved / wet : 0.0);
+    add_metric(r, limits, "sand_displaced_fraction_dry", dry > 0.0 ? dry_moved / dry : 0.0);
+    add_metric(r, limits, "sand_wetted_fraction", wet + dry > 0.0 ? wet / (wet + dry) : 0.0);
+  }
+
   static double free_water(const ParticleSet<D>& ps) {
     double m = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i)
@@ -74,6 +119,7 @@ class SceneObserver : public Observer<D> {
   double dx_;
   std::map<std::string, MetricLimit> limits_;
   std::vector<double> time_, free_water_, all_water_;
+  std::unordered_map<std::int64_t, SandTrack> sand_;
 };
 
 }  // namespace
