@@ -26,14 +26,19 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
   if (n == 0) return;
   if (n >= UINT32_MAX) throw std::runtime_error("neighbour search: too many particles");
 
-  double hmax = 0.0;
-  Vec<D> hi = ps.x[0];
-  lo_ = ps.x[0];
-  for (std::size_t i = 0; i < n; ++i) {
+  // Bounds and largest support: min and max are exact, so the result does not depend on the threads.
+  const auto count = static_cast<std::int64_t>(n);
+  double hmax = 0.0, lo[D], hi[D];
+  for (int d = 0; d < D; ++d) lo[d] = hi[d] = ps.x[0][d];
+#pragma omp parallel for schedule(static) reduction(max : hmax, hi[:D]) reduction(min : lo[:D])
+  for (std::int64_t i = 0; i < count; ++i) {
     hmax = std::max(hmax, ps.h[i]);
-    lo_ = lo_.cwiseMin(ps.x[i]);
-    hi = hi.cwiseMax(ps.x[i]);
+    for (int d = 0; d < D; ++d) {
+      lo[d] = std::min(lo[d], ps.x[i][d]);
+      hi[d] = std::max(hi[d], ps.x[i][d]);
+    }
   }
+  for (int d = 0; d < D; ++d) lo_[d] = lo[d];
   if (!(hmax > 0.0)) throw std::logic_error("neighbour search: support radius must be positive");
   cell_ = hmax;
   std::int64_t cells = 1;
@@ -48,14 +53,15 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
   // Stable counting sort by slot. Counts go to slot_start_[s + 2]; after the prefix sum
   // slot_start_[s + 1] is the start of slot s, and filling advances it to the start of s + 1.
   slot_start_.assign(2 * static_cast<std::size_t>(cells) + 2, 0);
-  for (std::size_t i = 0; i < n; ++i) {
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < count; ++i) {
     std::int64_t c = 0;
     for (int d = D - 1; d >= 0; --d)
       c = c * dims_[d] + std::min<std::int64_t>(dims_[d] - 1, static_cast<std::int64_t>((ps.x[i][d] - lo_[d]) / hmax));
     inert_[i] = ps.inert(i);
     slot_of_[i] = 2 * static_cast<std::uint64_t>(c) + inert_[i];
-    ++slot_start_[slot_of_[i] + 2];
   }
+  for (std::size_t i = 0; i < n; ++i) ++slot_start_[slot_of_[i] + 2];
   for (std::size_t s = 1; s < slot_start_.size(); ++s) slot_start_[s] += slot_start_[s - 1];
   xs_.resize(n);
   hs_.resize(n);

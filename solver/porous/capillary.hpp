@@ -1,5 +1,6 @@
 // Capillary potential and the SPH gradient of a porous scalar field (Lenaerts et al. 2008 eqs 3-4).
 #pragma once
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -17,26 +18,18 @@ inline double capillary_potential(double saturation, double kc, double alpha) {
   return kc * std::pow(1.0 - saturation, alpha);
 }
 
-/// The sums of porous_gradient for one field: Σ_j terms and the moment matrix of L_i.
-template <int D>
-class PorousGradientSum {
- public:
-  /// Adds neighbour j's term: A_j − A_i (Corrected) or A_j (Lenaerts), its V_j gradW_ij(h_j), d = x_i − x_j.
-  void add(double A, const Vec<D>& grad, const Vec<D>& d) {
-    g_ += A * grad;
-    M_ += grad * (-d).transpose();
-  }
-  Vec<D> gradient(PorousGradient form) const {
-    if (form == PorousGradient::Lenaerts) return g_;
-    const Eigen::FullPivLU<Mat<D>> lu(M_);
-    // A neighbourhood that does not span the space (a row, a lone pair) keeps the raw difference form.
-    return lu.rank() == D && std::abs(M_.determinant()) > 1e-3 * std::pow(M_.norm(), D) ? Vec<D>(lu.solve(g_)) : g_;
-  }
-
- private:
-  Vec<D> g_ = Vec<D>::Zero();
-  Mat<D> M_ = Mat<D>::Zero();
-};
+/// The gradients of porous_gradient from the sums g = Σ_j V_j (A_j − A_i) gradW_ij (one per field)
+/// and their common moment matrix M = Σ_j V_j gradW_ij ⊗ x_ji: L_i g with L_i = M⁻¹ (Corrected),
+/// or g itself (Lenaerts). One factorisation serves every field.
+template <int D, std::size_t K>
+std::array<Vec<D>, K> corrected_gradients(const Mat<D>& M, std::array<Vec<D>, K> g, PorousGradient form) {
+  if (form == PorousGradient::Lenaerts) return g;
+  const Eigen::FullPivLU<Mat<D>> lu(M);
+  // A neighbourhood that does not span the space (a row, a lone pair) keeps the raw difference form.
+  if (lu.rank() == D && std::abs(M.determinant()) > 1e-3 * std::pow(M.norm(), D))
+    for (Vec<D>& gk : g) gk = lu.solve(gk);
+  return g;
+}
 
 /// The gradient of [thesis eq. 22] (Lenaerts eq 3; the form as in porous_gradient below) of two
 /// fields in one pass over the neighbours:
@@ -49,15 +42,30 @@ std::pair<Vec<D>, Vec<D>> porous_gradients(const ParticleSet<D>& ps, const Neigh
                                            bool with_b, std::size_t i, PorousGradient form) {
   const bool lenaerts = form == PorousGradient::Lenaerts;
   const double Ai = lenaerts ? 0.0 : A[i], Bi = lenaerts ? 0.0 : B[i];
-  PorousGradientSum<D> sum_a, sum_b;
+  Vec<D> ga = Vec<D>::Zero(), gb = Vec<D>::Zero();
+  Mat<D> Ma = Mat<D>::Zero(), Mb = Mat<D>::Zero();
+  bool shared = true;  // B's sum has had only neighbours of A's so far: its moment matrix is Ma
   for (const auto j : nb.of(i)) {
     if (j == i || !b_part[j] || !(with_b || a_part[j])) continue;
     const Vec<D> d = ps.x[i] - ps.x[j];
     const Vec<D> grad = ps.volume(j) * kernel::spiky_gradient<D>(d, d.norm(), ps.h[j]);
-    if (a_part[j]) sum_a.add(A[j] - Ai, grad, d);
-    if (with_b) sum_b.add(B[j] - Bi, grad, d);
+    const Mat<D> moment = grad * (-d).transpose();
+    if (a_part[j]) {
+      ga += (A[j] - Ai) * grad;
+      Ma += moment;
+    }
+    if (!with_b) continue;
+    gb += (B[j] - Bi) * grad;
+    if (shared && !a_part[j]) Mb = Ma;
+    shared = shared && a_part[j];
+    if (!shared) Mb += moment;
   }
-  return {sum_a.gradient(form), with_b ? sum_b.gradient(form) : Vec<D>::Zero()};
+  if (!with_b) return {corrected_gradients<D, 1>(Ma, {ga}, form)[0], Vec<D>::Zero()};
+  if (shared) {
+    const auto [a, b] = corrected_gradients<D, 2>(Ma, {ga, gb}, form);
+    return {a, b};
+  }
+  return {corrected_gradients<D, 1>(Ma, {ga}, form)[0], corrected_gradients<D, 1>(Mb, {gb}, form)[0]};
 }
 
 /// Gradient of a porous field A at particle i [thesis eq. 22] (Lenaerts eq 3) over the neighbours

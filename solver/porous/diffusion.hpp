@@ -46,11 +46,12 @@ struct ExchangeSlot {
 /// Computed by both particles of a pair from the same arguments, so both see the same bits.
 template <int D>
 inline double pair_flow(const ExchangeSlot<D>& src, const ExchangeSlot<D>& dst, double lambda) {
+  if (src.mass <= 0.0) return 0.0;  // the cheap tests first: a dry source gives nothing
+  if (src.contact_speed > 0.0 && dst.height > src.height && !dst.draws_up) return 0.0;
   const Vec<D> d = dst.x - src.x;
   const double r = d.norm();
   const double hbar = 0.5 * (src.h + dst.h);
-  if (r <= 0.0 || r >= hbar || src.mass <= 0.0) return 0.0;
-  if (src.contact_speed > 0.0 && dst.height > src.height && !dst.draws_up) return 0.0;
+  if (r <= 0.0 || r >= hbar) return 0.0;
   const double u = src.contact_speed > 0.0 ? src.contact_speed : src.pore_velocity.dot(d) / r;
   if (u <= 0.0) return 0.0;
   return lambda * hbar * u * src.flow_factor * src.mass * dst.volume * kernel::viscosity_laplacian<D>(r, hbar);

@@ -1,6 +1,6 @@
 #include "sand/clusters.hpp"
 
-#include <deque>
+#include <vector>
 
 namespace sc {
 
@@ -9,21 +9,17 @@ Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb) {
   std::fill(ps.cluster.begin(), ps.cluster.end(), 0);
   auto joins = [&](std::size_t i) { return ps.phase_of(i) == Phase::Sand && ps.rigid[i] && ps.cluster[i] == 0; };
   Clusters clusters;
-  std::deque<std::size_t> queue;
   for (std::size_t seed = 0; seed < ps.size(); ++seed) {
     if (!joins(seed)) continue;
     const auto number = static_cast<std::int32_t>(clusters.size() + 1);
-    clusters.emplace_back();
     ps.cluster[seed] = number;
-    queue.push_back(seed);
-    while (!queue.empty()) {
-      const std::size_t i = queue.front();
-      queue.pop_front();
-      clusters.back().push_back(i);
+    std::vector<std::size_t>& members = clusters.emplace_back(1, seed);  // also the breadth-first queue
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      const std::size_t i = members[k];
       for (const auto j : nb.of(i))
         if (joins(j)) {
           ps.cluster[j] = number;
-          queue.push_back(j);
+          members.push_back(j);
         }
     }
   }

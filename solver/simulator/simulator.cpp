@@ -77,7 +77,9 @@ double Simulator<D>::stable_dt() const {
   // zero, and a mass-based spacing let one nearly empty particle collapse the step (dt → 1e-8 s in
   // wet_sand_collapse). Split and merged particles carry the support of their level.
   double hmin = INFINITY, vmax = 0.0, amax = g_.norm();
-  for (std::size_t i = 0; i < ps_.size(); ++i) {
+  const auto n = static_cast<std::int64_t>(ps_.size());
+#pragma omp parallel for schedule(static) reduction(min : hmin) reduction(max : vmax, amax)  // exact: any threads
+  for (std::int64_t i = 0; i < n; ++i) {
     if (!ps_.moves(i)) continue;
     hmin = std::min(hmin, ps_.h[i] / params_.support_ratio);
     vmax = std::max(vmax, ps_.v[i].norm());

@@ -13,6 +13,21 @@ namespace sc {
 template <int D>
 using MatArray = std::vector<Mat<D>, Eigen::aligned_allocator<Mat<D>>>;
 
+/// The blend weight of gradient_correction: clamp((λ − none)/(full − none), 0, 1) for the smallest
+/// eigenvalue λ of the symmetric S. Most particles are settled without the eigensolver: λ > full
+/// when S − (full + δ) I has a Cholesky factorisation, λ < none when a diagonal entry is below
+/// none − δ (λ ≤ min_k S_kk). With δ = kMargin |S| far above the rounding of either test and of
+/// the solver, the weight is the solver's, bitwise: exactly 1 (or 0).
+template <int D>
+double correction_weight(const Mat<D>& S, double none, double full) {
+  constexpr double kMargin = 1e-9;
+  const double margin = kMargin * S.cwiseAbs().maxCoeff();
+  if (Eigen::LLT<Mat<D>>(S - (full + margin) * Mat<D>::Identity()).info() == Eigen::Success) return 1.0;
+  if (S.diagonal().minCoeff() <= none - margin) return 0.0;
+  const double lambda = Eigen::SelfAdjointEigenSolver<Mat<D>>(S, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
+  return std::clamp((lambda - none) / (full - none), 0.0, 1.0);
+}
+
 /// Correction matrix L_i = (Σ_j V_j ∇W_ij ⊗ (x_j − x_i))⁻¹ with the spiky gradient averaged over
 /// both supports, so that Σ_j V_j (A_j − A_i) L_i ∇W_ij = ∇A exactly for a linear field A.
 /// Where the neighbourhood is incomplete (free surface) the moment matrix loses rank; there L_i
@@ -31,9 +46,7 @@ Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
     const Vec<D> grad = kernel::pair_average([&](double h) { return kernel::spiky_gradient<D>(d, r, h); }, ps.h[i], ps.h[j]);
     M += ps.volume(j) * grad * (-d).transpose();
   }
-  const Mat<D> S = 0.5 * (M + M.transpose());
-  const double lambda = Eigen::SelfAdjointEigenSolver<Mat<D>>(S, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
-  const double w = std::clamp((lambda - none) / (full - none), 0.0, 1.0);
+  const double w = correction_weight(Mat<D>(0.5 * (M + M.transpose())), none, full);
   if (w == 0.0) return Mat<D>::Identity();
   return (1.0 - w) * Mat<D>::Identity() + w * M.inverse();
 }
