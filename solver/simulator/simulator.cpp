@@ -8,6 +8,7 @@
 #include "porous/partial_water_pressure.hpp"
 #include "porous/porous_flow.hpp"
 #include "porous/porous_setup.hpp"
+#include "sand/rigid_wall_contact.hpp"
 #include "sand/sand_forces.hpp"
 #include "scene/scene_builder.hpp"
 #include "sph/density.hpp"
@@ -174,6 +175,7 @@ void Simulator<D>::integrate(double dt) {
   if (has_sand_) {
     auto tc = timers_.time(Stage::Clusters);
     motions = cluster_motions(ps_, clusters_, dt);  // eqs 13-18, from the velocities before the step
+    constrain_clusters_by_walls<D>(ps_, nb_, clusters_, motions, dt, params_.sand.wall_mu());
   }
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
