@@ -34,6 +34,8 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
   p.gravity = spec.gravity;
   p.domain_min = spec.domain_min;
   p.domain_max = spec.domain_max;
+  p.tank = spec.tank;
+  p.tank_wall_thickness = tank_wall_layers(spec.support_ratio * spacing, spacing) * spacing;
   if (spec.porous) {
     p.porous = *spec.porous;
     const double h = spec.support_ratio * spacing;
@@ -64,6 +66,7 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params)
   lo_ = to_vec<D>(params_.domain_min);
   hi_ = to_vec<D>(params_.domain_max);
   for (std::size_t i = 0; i < ps_.size(); ++i) has_sand_ = has_sand_ || ps_.phase_of(i) == Phase::Sand;
+  if (params_.tank) tank_walls_ = TankWalls<D>::from_tank(*params_.tank, params_.tank_wall_thickness);
   last_dt_ = params_.dt_max;
   check_state();
 }
@@ -175,6 +178,7 @@ void Simulator<D>::integrate(double dt) {
     auto tc = timers_.time(Stage::Clusters);
     motions = cluster_motions(ps_, clusters_, dt);  // eqs 13-18, from the velocities before the step
   }
+  if (tank_walls_) x_start_.assign(ps_.x.begin(), ps_.x.end());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!ps_.moves(i) || (has_sand_ && ps_.cluster[i] != 0)) continue;
@@ -183,6 +187,7 @@ void Simulator<D>::integrate(double dt) {
   }
   if (params_.adaptive) decay_density_offsets(ps_, dt, params_.adaptive->blend_time);
   if (has_sand_) move_clusters(ps_, clusters_, motions, dt, damping);
+  if (tank_walls_) collide_with_tank(ps_, *tank_walls_, x_start_);  // last line behind the wall particles
 }
 
 template <int D>
