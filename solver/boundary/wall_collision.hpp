@@ -11,9 +11,9 @@
 // rest). The contact point is where the particle, a sphere of half its spacing (h_i / support ratio)
 // in radius, touches the wall's face, as the wall particles (centres half a spacing behind the face)
 // are such spheres too: its centre stops one radius in front of the face, where the first layer of
-// fluid at rest sits. Put on the face itself, half a spacing from the wall particles, a particle got
-// their close-range pressure push (the spiky gradient there is 2.25 times that at one spacing) and,
-// crowded into a corner, left it at 10-20 m/s (thesis_bunny_winnie, measured). With wall particles in front of every closed side, a particle only reaches the plane when
+// fluid at rest sits. Put on the face itself, a particle would be half a spacing from the wall
+// particles, where the spiky pressure gradient is 2.25 times that at one spacing: in
+// thesis_bunny_winnie such particles, crowded into a corner, were pushed out at up to 22 m/s. With wall particles in front of every closed side, a particle only reaches the plane when
 // the pressure of a thin, fast sheet of water is too weak to stop it within one fixed step
 // (thesis_bunny_armadillos: water at 3 m/s and more passed the floor and the walls).
 #pragma once
