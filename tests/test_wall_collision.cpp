@@ -97,13 +97,8 @@ BOOST_AUTO_TEST_CASE(thrown_particle_never_leaves_a_slip_box_and_only_loses_ener
   // mechanical energy ½ m v² + m g y never exceeds the start value (the inelastic collisions only
   // remove energy; the lift onto the floor, m g δ with δ ≤ v_n Δt, is paid by the removed ½ m v_n²),
   // and it ends at rest in the floor's corner, one radius from both walls.
-  ParticleSet<2> ps;
-  const std::size_t i = ps.append();
-  ps.x[i] = Vec<2>(0.5, 0.5);
-  ps.v[i] = Vec<2>(12.0, -16.0);
-  ps.m[i] = 1e-3;
-  ps.h[i] = 0.02;
-  ps.rho0[i] = ps.rho[i] = 1000.0;
+  ParticleSet<2>::VecArray start;
+  const ParticleSet<2> ps = moved_particle(Vec<2>(0.5, 0.5), Vec<2>(12.0, -16.0), 0.0, start);
   SimulationParams params;
   params.gravity = {0.0, -9.81};
   params.domain_min = {-0.1, -0.1};
