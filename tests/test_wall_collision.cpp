@@ -18,9 +18,6 @@ TankSpec open_tank() {
   return t;
 }
 
-constexpr double kRatio = 2.0;   // support / spacing: the particles below have h = 0.02 m, spacing 0.01 m
-constexpr double kRadius = 0.005;  // half the spacing: a particle's centre stops this far from a wall
-
 /// One water particle at x with velocity v, moved by one step dt of free flight; returns the set and
 /// its position before the move in `start`.
 ParticleSet<2> moved_particle(const Vec<2>& x, const Vec<2>& v, double dt, ParticleSet<2>::VecArray& start) {
@@ -43,15 +40,14 @@ double kinetic_energy(const ParticleSet<2>& ps) { return 0.5 * ps.m[0] * ps.v[0]
 BOOST_AUTO_TEST_SUITE(wall_collision)
 
 BOOST_AUTO_TEST_CASE(slip_wall_stops_the_normal_velocity_and_keeps_the_tangential) {
-  // A particle 1 mm from contact with the x+ wall at 7 m/s (the splash speed of thesis_bunny_winnie)
-  // would pass it within the step; it ends in contact (its centre one radius from the wall's face)
-  // with v_n = 0 and its tangential velocity unchanged.
+  // A particle 1 mm from the x+ wall at 7 m/s (the splash speed of thesis_bunny_winnie) crosses it
+  // within the step; it ends on the wall with v_n = 0 and its tangential velocity unchanged.
   const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
   ParticleSet<2>::VecArray start;
-  ParticleSet<2> ps = moved_particle(Vec<2>(0.994, 0.5), Vec<2>(7.0, -1.5), 0.001, start);
+  ParticleSet<2> ps = moved_particle(Vec<2>(0.999, 0.5), Vec<2>(7.0, -1.5), 0.001, start);
   const double e0 = kinetic_energy(ps);
-  BOOST_TEST(collide_with_tank(ps, walls, start, kRatio) == 1);
-  BOOST_TEST(ps.x[0][0] == 1.0 - kRadius);
+  BOOST_TEST(collide_with_tank(ps, walls, start) == 1);
+  BOOST_TEST(ps.x[0][0] == 1.0);
   BOOST_TEST(ps.x[0][1] == 0.5 - 0.0015, boost::test_tools::tolerance(1e-15));  // tangential motion kept
   BOOST_TEST(ps.v[0][0] == 0.0);
   BOOST_TEST(ps.v[0][1] == -1.5);
@@ -61,9 +57,9 @@ BOOST_AUTO_TEST_CASE(slip_wall_stops_the_normal_velocity_and_keeps_the_tangentia
 BOOST_AUTO_TEST_CASE(no_slip_floor_brings_the_particle_to_rest_on_it) {
   const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
   ParticleSet<2>::VecArray start;
-  ParticleSet<2> ps = moved_particle(Vec<2>(0.3, 0.007), Vec<2>(3.0, -4.0), 0.001, start);
-  BOOST_TEST(collide_with_tank(ps, walls, start, kRatio) == 1);
-  BOOST_TEST(ps.x[0][1] == kRadius);
+  ParticleSet<2> ps = moved_particle(Vec<2>(0.3, 0.002), Vec<2>(3.0, -4.0), 0.001, start);
+  BOOST_TEST(collide_with_tank(ps, walls, start) == 1);
+  BOOST_TEST(ps.x[0][1] == 0.0);
   BOOST_TEST(ps.v[0].norm() == 0.0);
   // An inward velocity is the particle's own: the collision rule never touches it.
   BOOST_TEST((wall_collision_velocity<2>(Vec<2>(3.0, 4.0), Vec<2>(0.0, -1.0), true) - Vec<2>(0.0, 4.0)).norm() == 0.0);
@@ -73,9 +69,9 @@ BOOST_AUTO_TEST_CASE(no_slip_floor_brings_the_particle_to_rest_on_it) {
 BOOST_AUTO_TEST_CASE(particle_driven_into_a_corner_ends_in_the_corner) {
   const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
   ParticleSet<2>::VecArray start;
-  ParticleSet<2> ps = moved_particle(Vec<2>(0.993, 0.006), Vec<2>(5.0, -5.0), 0.001, start);
-  BOOST_TEST(collide_with_tank(ps, walls, start, kRatio) == 1);
-  BOOST_TEST((ps.x[0] - Vec<2>(1.0 - kRadius, kRadius)).norm() == 0.0);
+  ParticleSet<2> ps = moved_particle(Vec<2>(0.998, 0.001), Vec<2>(5.0, -5.0), 0.001, start);
+  BOOST_TEST(collide_with_tank(ps, walls, start) == 1);
+  BOOST_TEST((ps.x[0] - Vec<2>(1.0, 0.0)).norm() == 0.0);
   BOOST_TEST(ps.v[0].norm() == 0.0);
 }
 
@@ -85,10 +81,10 @@ BOOST_AUTO_TEST_CASE(particle_over_the_rim_of_an_open_tank_is_left_alone) {
   const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
   ParticleSet<2>::VecArray start;
   ParticleSet<2> over = moved_particle(Vec<2>(0.999, 1.05), Vec<2>(7.0, 0.0), 0.001, start);
-  BOOST_TEST(collide_with_tank(over, walls, start, kRatio) == 0);
+  BOOST_TEST(collide_with_tank(over, walls, start) == 0);
   BOOST_TEST(over.x[0][0] == 0.999 + 0.007, boost::test_tools::tolerance(1e-15));
   ParticleSet<2> outside = moved_particle(Vec<2>(1.05, 0.5), Vec<2>(-1.0, -1.0), 0.001, start);
-  BOOST_TEST(collide_with_tank(outside, walls, start, kRatio) == 0);
+  BOOST_TEST(collide_with_tank(outside, walls, start) == 0);
 }
 
 BOOST_AUTO_TEST_CASE(thrown_particle_never_leaves_a_slip_box_and_only_loses_energy) {
@@ -96,7 +92,7 @@ BOOST_AUTO_TEST_CASE(thrown_particle_never_leaves_a_slip_box_and_only_loses_ener
   // sideways in a 2-D tank with slip walls under gravity: at every step it is inside the tank, its
   // mechanical energy ½ m v² + m g y never exceeds the start value (the inelastic collisions only
   // remove energy; the lift onto the floor, m g δ with δ ≤ v_n Δt, is paid by the removed ½ m v_n²),
-  // and it ends at rest in the floor's corner, one radius from both walls.
+  // and it ends at rest in the floor's corner x = 1, y = 0.
   ParticleSet<2>::VecArray start;
   const ParticleSet<2> ps = moved_particle(Vec<2>(0.5, 0.5), Vec<2>(12.0, -16.0), 0.0, start);
   SimulationParams params;
@@ -117,12 +113,12 @@ BOOST_AUTO_TEST_CASE(thrown_particle_never_leaves_a_slip_box_and_only_loses_ener
   for (int s = 0; s < 500; ++s) {
     sim.step();
     const Vec<2>& x = sim.particles().x[0];
-    inside = inside && x[0] >= kRadius && x[0] <= 1.0 - kRadius && x[1] >= kRadius;
+    inside = inside && x[0] >= 0.0 && x[0] <= 1.0 && x[1] >= 0.0;
     bounded = bounded && energy() <= e0;
   }
   BOOST_TEST(inside);
   BOOST_TEST(bounded);
-  BOOST_TEST((sim.particles().x[0] - Vec<2>(1.0 - kRadius, kRadius)).norm() == 0.0);
+  BOOST_TEST((sim.particles().x[0] - Vec<2>(1.0, 0.0)).norm() == 0.0);
   BOOST_TEST(sim.particles().v[0].norm() == 0.0);
 }
 

@@ -22,16 +22,15 @@ TankWalls<D> TankWalls<D>::from_tank(const TankSpec& tank, double thickness) {
 
 namespace {
 
-/// Whether the path from a (on the tank's side of the contact plane x[axis] = plane) to b crosses
-/// that plane at a point in front of the side's wall.
+/// Whether the path from a (on the tank's side of the plane) to b crosses the side's plane at a
+/// point of its wall.
 template <int D>
-bool crosses_wall(const TankWalls<D>& walls, const typename TankWalls<D>::Side& s, double plane, const Vec<D>& a,
-                  const Vec<D>& b) {
+bool crosses_wall(const TankWalls<D>& walls, const typename TankWalls<D>::Side& s, const Vec<D>& a, const Vec<D>& b) {
   const int k = s.axis;
-  if (s.outward * (a[k] - plane) > 0.0 || s.outward * (b[k] - plane) <= 0.0) return false;
-  const double t = (plane - a[k]) / (b[k] - a[k]);
+  if (s.outward * (a[k] - s.position) > 0.0 || s.outward * (b[k] - s.position) <= 0.0) return false;
+  const double t = (s.position - a[k]) / (b[k] - a[k]);
   Vec<D> hit = a + t * (b - a);
-  hit[k] = plane;
+  hit[k] = s.position;
   for (int e = 0; e < D; ++e)
     if (e != k && (hit[e] < walls.extent_min[e] || hit[e] > walls.extent_max[e])) return false;
   return true;
@@ -41,20 +40,18 @@ bool crosses_wall(const TankWalls<D>& walls, const typename TankWalls<D>::Side& 
 
 template <int D>
 long collide_with_tank(ParticleSet<D>& ps, const TankWalls<D>& walls,
-                       const typename ParticleSet<D>::VecArray& x_start, double support_ratio) {
+                       const typename ParticleSet<D>::VecArray& x_start) {
   const auto n = static_cast<std::int64_t>(ps.size());
   long collided = 0;
 #pragma omp parallel for schedule(static) reduction(+ : collided)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!ps.moves(i)) continue;
     bool hit_any = false;
-    const double radius = 0.5 * ps.h[i] / support_ratio;
     for (const auto& s : walls.sides) {
-      const double plane = s.position - s.outward * radius;
-      if (!crosses_wall(walls, s, plane, x_start[i], ps.x[i])) continue;
+      if (!crosses_wall(walls, s, x_start[i], ps.x[i])) continue;
       Vec<D> normal = Vec<D>::Zero();
       normal[s.axis] = s.outward;
-      ps.x[i][s.axis] = plane;
+      ps.x[i][s.axis] = s.position;
       ps.v[i] = wall_collision_velocity<D>(ps.v[i], normal, s.no_slip);
       hit_any = true;
     }
@@ -65,7 +62,7 @@ long collide_with_tank(ParticleSet<D>& ps, const TankWalls<D>& walls,
 
 template struct TankWalls<2>;
 template struct TankWalls<3>;
-template long collide_with_tank<2>(ParticleSet<2>&, const TankWalls<2>&, const ParticleSet<2>::VecArray&, double);
-template long collide_with_tank<3>(ParticleSet<3>&, const TankWalls<3>&, const ParticleSet<3>::VecArray&, double);
+template long collide_with_tank<2>(ParticleSet<2>&, const TankWalls<2>&, const ParticleSet<2>::VecArray&);
+template long collide_with_tank<3>(ParticleSet<3>&, const TankWalls<3>&, const ParticleSet<3>::VecArray&);
 
 }  // namespace sc

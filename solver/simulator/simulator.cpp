@@ -187,7 +187,7 @@ void Simulator<D>::integrate(double dt) {
   }
   if (params_.adaptive) decay_density_offsets(ps_, dt, params_.adaptive->blend_time);
   if (has_sand_) move_clusters(ps_, clusters_, motions, dt, damping);
-  if (tank_walls_) collide_with_tank(ps_, *tank_walls_, x_start_, params_.support_ratio);  // last line behind the wall particles
+  if (tank_walls_) collide_with_tank(ps_, *tank_walls_, x_start_);  // last line behind the wall particles
 }
 
 template <int D>
