@@ -94,8 +94,10 @@ double flux_length_factor(double dx, double h) {
 /// in prose after [thesis eq. 30]: a particle's outflow over dt is at most its water m_p and its
 /// inflow at most its free room (capacity − m_p). Each pair flow is scaled by min(out of the
 /// source, in of the receiver), so the balance stays exact and 0 ≤ m_p ≤ capacity after the step.
+/// A store a round-off below zero (m_p = −1e-20) with no outflow gets scale 1, not 0/0.
 inline double outflow_scale(double mass, double outflow, double dt) {
-  return outflow * dt > mass ? std::max(0.0, mass) / (outflow * dt) : 1.0;
+  const double available = std::max(0.0, mass);
+  return outflow * dt > available ? available / (outflow * dt) : 1.0;
 }
 inline double inflow_scale(double mass, double capacity, double inflow, double dt) {
   const double room = std::max(0.0, capacity - mass);
