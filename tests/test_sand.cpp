@@ -3,7 +3,7 @@
 // shear stress [thesis eq. 11], rigid stress [thesis eq. 12a], torque [thesis eq. 12b], cluster
 // force and torque [thesis eq. 13] [thesis eq. 14], inertia [thesis eq. 17], τ = Iα
 // [thesis eq. 15] [thesis eq. 16], rigid velocity update [thesis eq. 18], frictional force
-// [thesis eq. 19], Bell contact and wall friction, clusters.
+// [thesis eq. 19], Bell contact and wall friction, clusters, rigid clusters against walls.
 #include <boost/test/unit_test.hpp>
 #include <numeric>
 #include <random>
@@ -12,10 +12,12 @@
 #include "sand/contact.hpp"
 #include "sand/frictional_force.hpp"
 #include "sand/frictional_stress.hpp"
+#include "sand/rigid_wall_contact.hpp"
 #include "sand/sand_forces.hpp"
 #include "sand/strain_rate.hpp"
 #include "sand/yield.hpp"
 #include "scene/scene_builder.hpp"
+#include "simulator/simulator.hpp"
 #include "sph/density.hpp"
 #include "water/water_forces.hpp"
 #include "support/lattice.hpp"
@@ -66,6 +68,58 @@ ParticleSet<2> jittered_sand(unsigned seed, int n, double dx) {
     ps.p[i] = 1000.0 * (1.0 + u(rng));
   }
   return ps;
+}
+
+
+/// A floor of `layers` rows of wall particles (water lattice mass, ρ0 = 1000) under x in
+/// [x0, x1), whose top row lies at height `top`; `rough` marks them no-slip.
+void add_floor(ParticleSet<2>& ps, double x0, double x1, double top, int layers, double dx, bool rough) {
+  const double m = lattice_mass<2>(1000.0, dx, 2.0 * dx, kernel::DensityKernel::Spiky);
+  for (int row = 0; row < layers; ++row)
+    for (const auto& x : lattice_points<2>(Vec<2>(x0, top - (row + 0.5) * dx), Vec<2>(x1, top - (row - 0.5) * dx), dx)) {
+      const std::size_t w = ps.append();
+      ps.x[w] = x;
+      ps.m[w] = m;
+      ps.h[w] = 2.0 * dx;
+      ps.rho[w] = ps.rho0[w] = 1000.0;
+      ps.phase[w] = static_cast<std::uint8_t>(Phase::Boundary);
+      ps.rough[w] = rough ? 1 : 0;
+    }
+}
+
+/// Contact distance (s_i + s_w)/2 of a sand particle of add_sand_block and a wall particle of add_floor.
+double sand_wall_contact_distance(double dx) {
+  return 0.5 * (rest_spacing<2>(lattice_mass<2>(2000.0, dx, 2.0 * dx, kernel::DensityKernel::Spiky), 2000.0) +
+                rest_spacing<2>(lattice_mass<2>(1000.0, dx, 2.0 * dx, kernel::DensityKernel::Spiky), 1000.0));
+}
+
+/// Adds a block of sand (ρ0 = 2000) on the lattice of spacing dx in [lo, hi), with velocity v and
+/// force m g on every particle; returns the new particles' indices.
+std::vector<std::size_t> add_sand_block(ParticleSet<2>& ps, const Vec<2>& lo, const Vec<2>& hi, double dx,
+                                        const Vec<2>& v, const Vec<2>& g) {
+  const double m = lattice_mass<2>(2000.0, dx, 2.0 * dx, kernel::DensityKernel::Spiky);
+  std::vector<std::size_t> members;
+  for (const auto& x : lattice_points<2>(lo, hi, dx)) {
+    const std::size_t i = ps.append();
+    ps.x[i] = x;
+    ps.v[i] = v;
+    ps.m[i] = m;
+    ps.force[i] = m * g;
+    ps.h[i] = 2.0 * dx;
+    ps.rho0[i] = ps.rho[i] = 2000.0;
+    ps.phase[i] = static_cast<std::uint8_t>(Phase::Sand);
+    members.push_back(i);
+  }
+  return members;
+}
+
+/// A 10 x 5 sand block (spacing 0.01 m) whose bottom row touches a floor (gap 0), moving at v
+/// with force m g on every member; returns the members.
+std::vector<std::size_t> block_on_floor(ParticleSet<2>& ps, const Vec<2>& v, const Vec<2>& g, bool rough) {
+  const double dx = 0.01;
+  const auto members = add_sand_block(ps, Vec<2>(0.0, 0.0), Vec<2>(0.1, 0.05), dx, v, g);
+  add_floor(ps, -0.05, 0.15, 0.5 * dx - sand_wall_contact_distance(dx), 2, dx, rough);
+  return members;
 }
 
 }  // namespace
@@ -525,6 +579,118 @@ BOOST_AUTO_TEST_CASE(clusters_by_breadth_first_search_in_stable_order) {
   BOOST_TEST(ps.cluster[10] == 0);
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (i != 10) BOOST_TEST(ps.cluster[i] == (ps.x[i][0] > 0.04 ? 2 : 1));
+}
+
+
+BOOST_AUTO_TEST_CASE(rigid_block_resting_on_a_floor_is_carried_by_its_wall_contacts) {
+  // resolve_wall_contacts (Baraff 2001 resting contact): a rigid 10 x 5 sand block at rest whose
+  // bottom row touches a floor, after one thesis step (Δt = 0.001 s) of gravity: the walls' impulse
+  // is exactly its weight times Δt, straight up (the floor carries it), and the block stays at rest
+  // (v_cm and the rim speed |ω| 0.05 m below 1e-8 g Δt), on a slip and on a rough floor.
+  const double dt = 1e-3, g = 9.81;
+  for (const bool rough : {false, true}) {
+    ParticleSet<2> ps;
+    const auto members = block_on_floor(ps, Vec<2>::Zero(), Vec<2>(0.0, -g), rough);
+    NeighbourGrid<2> nb;
+    nb.rebuild(ps);
+    ClusterMotion<2> motion = rigid_motion<2>(members, ps.m, ps.x, ps.v, ps.force, dt);
+    const double weight_impulse = motion.mass * g * dt;
+    const auto contacts = cluster_wall_contacts<2>(ps, nb, members, motion.centre);
+    BOOST_TEST(contacts.size() > 10u);
+    const ContactImpulse<2> J = resolve_wall_contacts<2>(motion, contacts, true, dt, 0.7);
+    const Vec<2> total = J.normal + J.tangential;
+    BOOST_TEST(total[1] == weight_impulse, tt::tolerance(1e-8));
+    BOOST_TEST(std::abs(total[0]) < 1e-8 * weight_impulse);
+    BOOST_TEST(motion.velocity.norm() < 1e-8 * g * dt);
+    BOOST_TEST(std::abs(motion.omega[0]) * 0.05 < 1e-8 * g * dt);
+    BOOST_TEST((motion.momentum - motion.mass * motion.velocity).norm() < 1e-12 * weight_impulse);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(rigid_block_landing_on_a_floor_obeys_coulomb_at_the_contact) {
+  // The block lands at v = (1, −0.2) m/s, no force. Afterwards no bottom grain moves into the
+  // floor. Slip floor: the normal velocity is stopped and the tangential one kept (ΔP = (0, 0.2 M),
+  // no spin). Rough floor, μ = 0.3: the grains keep sliding (1 > μ 0.2), so the friction impulse is
+  // Coulomb's μ times the normal impulse, against the sliding, and kinetic energy only decreases.
+  const double dt = 1e-3, mu = 0.3;
+  const Vec<2> v0(1.0, -0.2);
+  for (const bool rough : {false, true}) {
+    ParticleSet<2> ps;
+    const auto members = block_on_floor(ps, v0, Vec<2>::Zero(), rough);
+    NeighbourGrid<2> nb;
+    nb.rebuild(ps);
+    ClusterMotion<2> motion = rigid_motion<2>(members, ps.m, ps.x, ps.v, ps.force, dt);
+    const Vec<2> P0 = motion.momentum;
+    const auto contacts = cluster_wall_contacts<2>(ps, nb, members, motion.centre);
+    resolve_wall_contacts<2>(motion, contacts, true, dt, mu);
+    const Vec<2> dP = motion.momentum - P0;
+    for (const auto& c : contacts)
+      if (c.gap <= 0.0) BOOST_TEST(rigid_velocity<2>(motion, motion.centre + c.arm).dot(c.normal) > -1e-9);
+    if (!rough) {
+      BOOST_TEST(dP[1] == 0.2 * motion.mass, tt::tolerance(1e-8));
+      BOOST_TEST(dP[0] == 0.0);
+      BOOST_TEST(std::abs(motion.omega[0]) * 0.05 < 1e-8);
+      continue;
+    }
+    BOOST_TEST(dP[1] > 0.0);
+    BOOST_TEST(-dP[0] == mu * dP[1], tt::tolerance(1e-6));
+    const double kinetic = 0.5 * motion.velocity.squaredNorm() * motion.mass +
+                           0.5 * motion.omega.dot(motion.inertia * motion.omega);
+    BOOST_TEST(kinetic < 0.5 * motion.mass * v0.squaredNorm());
+    BOOST_TEST(motion.velocity[0] > 0.0);  // still sliding forward
+  }
+}
+
+BOOST_AUTO_TEST_CASE(rigid_sand_mushroom_stands_on_its_stem_at_the_thesis_step) {
+  // A 0.2 x 0.3 m block of sand that never yields (c = 1e5 Pa) standing on a 0.02 m wide, 0.02 m
+  // high stem on a rough two-layer floor, simulated at c = 10 m/s and the thesis' fixed step
+  // 0.001 s: each stem grain carries about 300 times its own weight, 8x the Bell contact's
+  // per-grain stiffness at that step (the load that sank the thesis_winnie_box figure). Over 0.4 s
+  // the block stays one cluster, no stem grain comes closer to a floor grain than the contact
+  // distance, and the block stays put: its centre moves less than 1e-3 spacings and ends at rest.
+  const double dx = 0.01, s = sand_wall_contact_distance(dx);
+  ParticleSet<2> ps;
+  const double floor_top = -s;  // the stem's bottom row (y = dx/2) touches it: gap 0
+  add_sand_block(ps, Vec<2>(-0.01, 0.0), Vec<2>(0.01, 0.02), dx, Vec<2>::Zero(), Vec<2>::Zero());
+  add_sand_block(ps, Vec<2>(-0.1, 0.02), Vec<2>(0.1, 0.32), dx, Vec<2>::Zero(), Vec<2>::Zero());
+  add_floor(ps, -0.2, 0.2, floor_top + 0.5 * dx, 2, dx, true);
+  SimulationParams sp;
+  sp.dt_max = 1e-3;
+  sp.eos.sound_speed = 10.0;
+  sp.sand.rest_density = 2000.0;
+  sp.sand.friction_angle_deg = 35.0;
+  sp.sand.cohesion = 1e5;
+  sp.gravity = {0.0, -9.81};
+  sp.domain_min = {-1.0, -1.0};
+  sp.domain_max = {1.0, 1.0};
+  Simulator<2> sim(std::move(ps), sp);
+  auto centre = [&sim] {
+    const auto& p = sim.particles();
+    Vec<2> c = Vec<2>::Zero();
+    double M = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.phase_of(i) == Phase::Sand) {
+        c += p.m[i] * p.x[i];
+        M += p.m[i];
+      }
+    return Vec<2>(c / M);
+  };
+  const Vec<2> c0 = centre();
+  double closest = INFINITY;
+  for (int k = 0; k < 400; ++k) {
+    sim.step();
+    const auto& p = sim.particles();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if (p.phase_of(i) != Phase::Sand) continue;
+      BOOST_TEST_REQUIRE(p.cluster[i] == 1);
+      closest = std::min(closest, p.x[i][1] - floor_top);
+    }
+  }
+  BOOST_TEST(closest > s - 1e-9);
+  BOOST_TEST((centre() - c0).norm() < 1e-3 * dx);
+  double fastest = 0.0;
+  for (std::size_t i = 0; i < sim.particles().size(); ++i) fastest = std::max(fastest, sim.particles().v[i].norm());
+  BOOST_TEST(fastest < 1e-3);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

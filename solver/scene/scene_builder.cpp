@@ -61,7 +61,7 @@ void add_particle(ParticleSet<D>& ps, const Vec<D>& x, Phase phase, double mass,
 /// that is not open. A point is rough if any wall side it lies beyond is no-slip.
 template <int D>
 void add_tank(ParticleSet<D>& ps, const TankSpec& tank, double dx, double h, double mass, double rho0) {
-  const int layers = static_cast<int>(std::ceil(h / dx));
+  const int layers = tank_wall_layers(h, dx);
   const char* axes = "xyz";
   Vec<D> lo = to_vec<D>(tank.min), hi = to_vec<D>(tank.max);
   Vec<D> ext_lo = lo, ext_hi = hi;

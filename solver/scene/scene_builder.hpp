@@ -1,5 +1,7 @@
 // Builds the particles of a case at a given spacing: lattice blocks of water or sand and the tank walls.
 #pragma once
+#include <cmath>
+
 #include "core/particle_set.hpp"
 #include "io/case_file.hpp"
 #include "sph/kernels.hpp"
@@ -15,6 +17,10 @@ double lattice_mass(double rho0, double dx, double h, kernel::DensityKernel k);
 /// Positions of the lattice points (min + (k + 1/2) dx) inside the box [min, max).
 template <int D>
 std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>> lattice_points(const Vec<D>& min, const Vec<D>& max, double dx);
+
+/// Number of wall-particle layers of a closed tank side: enough to fill the support h of a fluid
+/// particle at the wall (ceil(h / dx)).
+inline int tank_wall_layers(double h, double dx) { return static_cast<int>(std::ceil(h / dx)); }
 
 /// The particles of `spec` at spacing dx: its blocks (in file order) then its tank walls.
 template <int D>

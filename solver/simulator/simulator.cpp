@@ -8,6 +8,7 @@
 #include "porous/partial_water_pressure.hpp"
 #include "porous/porous_flow.hpp"
 #include "porous/porous_setup.hpp"
+#include "sand/rigid_wall_contact.hpp"
 #include "sand/sand_forces.hpp"
 #include "scene/scene_builder.hpp"
 #include "sph/density.hpp"
@@ -34,6 +35,8 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
   p.gravity = spec.gravity;
   p.domain_min = spec.domain_min;
   p.domain_max = spec.domain_max;
+  p.tank = spec.tank;
+  p.tank_wall_thickness = tank_wall_layers(spec.support_ratio * spacing, spacing) * spacing;
   if (spec.porous) {
     p.porous = *spec.porous;
     const double h = spec.support_ratio * spacing;
@@ -64,6 +67,7 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params)
   lo_ = to_vec<D>(params_.domain_min);
   hi_ = to_vec<D>(params_.domain_max);
   for (std::size_t i = 0; i < ps_.size(); ++i) has_sand_ = has_sand_ || ps_.phase_of(i) == Phase::Sand;
+  if (params_.tank) tank_walls_ = TankWalls<D>::from_tank(*params_.tank, params_.tank_wall_thickness);
   last_dt_ = params_.dt_max;
   check_state();
 }
@@ -176,7 +180,9 @@ void Simulator<D>::integrate(double dt) {
   if (has_sand_) {
     auto tc = timers_.time(Stage::Clusters);
     motions = cluster_motions(ps_, clusters_, dt);  // eqs 13-18, from the velocities before the step
+    constrain_clusters_by_walls<D>(ps_, nb_, clusters_, motions, dt, params_.sand.wall_mu());
   }
+  if (tank_walls_) x_start_.assign(ps_.x.begin(), ps_.x.end());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!ps_.moves(i) || (has_sand_ && ps_.cluster[i] != 0)) continue;
@@ -185,6 +191,7 @@ void Simulator<D>::integrate(double dt) {
   }
   if (params_.adaptive) decay_density_offsets(ps_, dt, params_.adaptive->blend_time);
   if (has_sand_) move_clusters(ps_, clusters_, motions, dt, damping);
+  if (tank_walls_) collide_with_tank(ps_, *tank_walls_, x_start_);  // last line behind the wall particles
 }
 
 template <int D>

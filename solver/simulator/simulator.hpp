@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "boundary/wall_collision.hpp"
 #include "core/errors.hpp"
 #include "core/particle_set.hpp"
 #include "core/stage_timers.hpp"
@@ -29,6 +30,8 @@ struct SimulationParams {
   std::optional<PorousParams> porous;  ///< porous flow (solver/porous/), derived for the case spacing
   std::optional<AdaptivitySpec> adaptive;  ///< split and merge (solver/adaptive/), derived for the spacing
   std::vector<double> gravity, domain_min, domain_max;
+  std::optional<TankSpec> tank;      ///< the case's box tank: its closed sides also stop particles by collision
+  double tank_wall_thickness = 0.0;  ///< [m] thickness of the tank's wall-particle layers at this spacing
 
   static SimulationParams from_case(const CaseSpec& spec, double spacing);
 };
@@ -94,7 +97,9 @@ class Simulator {
   MatArray<D> correction_;  // kernel-gradient corrections of the current step
   MatArray<D> sand_stress_;   // tension-positive frictional stress −σ_f of each sand particle (eq 8)
   VecArrayOf<D> predicted_velocity_;  // v* of the yield test (update_sand_state)
-  VecArrayOf<D> wall_force_;  // push of rough walls on each sand particle (normal of the wall friction)
+  VecArrayOf<D> wall_force_;
+  std::optional<TankWalls<D>> tank_walls_;  // closed sides of the case's tank (collision planes)
+  VecArrayOf<D> x_start_;     // positions before the step's move (the collision's path start)  // push of rough walls on each sand particle (normal of the wall friction)
   PorousWork<D> porous_work_;  // buffers of the porous step
   Clusters clusters_;         // rigid sand clusters of the current step
   bool has_sand_ = false;

@@ -1,0 +1,68 @@
+#include "boundary/wall_collision.hpp"
+
+namespace sc {
+
+template <int D>
+TankWalls<D> TankWalls<D>::from_tank(const TankSpec& tank, double thickness) {
+  TankWalls w;
+  const char* axes = "xyz";
+  for (int d = 0; d < D; ++d) {
+    w.extent_min[d] = tank.min[d];
+    w.extent_max[d] = tank.max[d];
+    for (const int outward : {-1, 1}) {
+      const std::string& rule = tank.sides.at(std::string(1, axes[d]) + (outward < 0 ? "-" : "+"));
+      if (rule == "open") continue;
+      const double plane = outward < 0 ? tank.min[d] : tank.max[d];
+      w.sides.push_back(Side{d, outward, plane, rule == "no_slip"});
+      (outward < 0 ? w.extent_min[d] : w.extent_max[d]) = plane + outward * thickness;
+    }
+  }
+  return w;
+}
+
+namespace {
+
+/// Whether the path from a (on the tank's side of the plane) to b crosses the side's plane at a
+/// point of its wall.
+template <int D>
+bool crosses_wall(const TankWalls<D>& walls, const typename TankWalls<D>::Side& s, const Vec<D>& a, const Vec<D>& b) {
+  const int k = s.axis;
+  if (s.outward * (a[k] - s.position) > 0.0 || s.outward * (b[k] - s.position) <= 0.0) return false;
+  const double t = (s.position - a[k]) / (b[k] - a[k]);
+  Vec<D> hit = a + t * (b - a);
+  hit[k] = s.position;
+  for (int e = 0; e < D; ++e)
+    if (e != k && (hit[e] < walls.extent_min[e] || hit[e] > walls.extent_max[e])) return false;
+  return true;
+}
+
+}  // namespace
+
+template <int D>
+long collide_with_tank(ParticleSet<D>& ps, const TankWalls<D>& walls,
+                       const typename ParticleSet<D>::VecArray& x_start) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+  long collided = 0;
+#pragma omp parallel for schedule(static) reduction(+ : collided)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (!ps.moves(i)) continue;
+    bool hit_any = false;
+    for (const auto& s : walls.sides) {
+      if (!crosses_wall(walls, s, x_start[i], ps.x[i])) continue;
+      Vec<D> normal = Vec<D>::Zero();
+      normal[s.axis] = s.outward;
+      ps.x[i][s.axis] = s.position;
+      ps.v[i] = wall_collision_velocity<D>(ps.v[i], normal, s.no_slip);
+      hit_any = true;
+    }
+    if (hit_any) ++collided;
+  }
+  return collided;
+}
+
+template struct TankWalls<2>;
+template struct TankWalls<3>;
+template long collide_with_tank<2>(ParticleSet<2>&, const TankWalls<2>&, const ParticleSet<2>::VecArray&);
+template long collide_with_tank<3>(ParticleSet<3>&, const TankWalls<3>&, const ParticleSet<3>::VecArray&);
+
+}  // namespace sc

@@ -1,0 +1,139 @@
+#include "sand/rigid_wall_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "sand/sand_forces.hpp"
+
+namespace sc {
+
+namespace {
+
+/// The (pseudo-)inverse of the inertia tensor, column by column with solve_inertia, so a
+/// degenerate cluster (members on a line) cannot spin about its degenerate axis; zero for a body
+/// that cannot spin (one particle: its inertia is round-off, as in rigid_motion).
+template <int D>
+AngMat<D> inverse_inertia(const AngMat<D>& inertia, bool spins) {
+  AngMat<D> inv = AngMat<D>::Zero();
+  if (!spins) return inv;
+  for (int k = 0; k < angular_dim<D>; ++k) inv.col(k) = solve_inertia<D>(inertia, AngMat<D>::Identity().col(k));
+  return inv;
+}
+
+/// The rigid body of resolve_wall_contacts: mass, inverse inertia and the velocities it updates.
+template <int D>
+struct Body {
+  double inv_mass;
+  AngMat<D> inv_inertia;
+  Vec<D> v;
+  AngVec<D> omega;
+
+  Vec<D> point_velocity(const Vec<D>& arm) const { return v + spin_velocity<D>(omega, arm); }
+  /// 1 / effective mass of an impulse along the unit vector t at the arm r: 1/M + (r × t)ᵀ I⁻¹ (r × t).
+  double inv_effective_mass(const Vec<D>& arm, const Vec<D>& t) const {
+    const AngVec<D> rt = moment<D>(arm, t);
+    return inv_mass + rt.dot(inv_inertia * rt);
+  }
+  void apply(const Vec<D>& arm, const Vec<D>& impulse) {
+    v += inv_mass * impulse;
+    omega += inv_inertia * moment<D>(arm, impulse);
+  }
+};
+
+/// Coulomb friction impulse of one contact: the impulse that stops its tangential velocity,
+/// added to the accumulated one and clamped to the cone |λ_t| ≤ μ λ_n; returns the change applied.
+template <int D>
+Vec<D> friction_step(Body<D>& body, const WallContact<D>& c, Vec<D>& accumulated, double limit) {
+  const Vec<D> u = body.point_velocity(c.arm);
+  const Vec<D> ut = u - u.dot(c.normal) * c.normal;
+  const double speed = ut.norm();
+  Vec<D> target = accumulated;
+  if (speed > 0.0) target -= (speed / body.inv_effective_mass(c.arm, ut / speed)) * (ut / speed);
+  const double size = target.norm();
+  if (size > limit) target *= limit / size;
+  const Vec<D> change = target - accumulated;
+  accumulated = target;
+  body.apply(c.arm, change);
+  return change;
+}
+
+}  // namespace
+
+template <int D>
+std::vector<WallContact<D>> cluster_wall_contacts(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
+                                                  std::span<const std::size_t> members, const Vec<D>& centre) {
+  std::vector<WallContact<D>> out;
+  for (const auto i : members) {
+    const double si = rest_spacing<D>(ps.m[i], ps.rho0[i]);
+    for (const auto w : nb.of(i)) {
+      if (ps.phase_of(w) != Phase::Boundary || ps.porosity[w] != 0.0) continue;
+      const Vec<D> d = ps.x[i] - ps.x[w];
+      const double r = d.norm();
+      if (r <= 0.0) continue;
+      const double s = 0.5 * (si + rest_spacing<D>(ps.m[w], ps.rho0[w]));
+      out.push_back({Vec<D>(ps.x[i] - centre), Vec<D>(d / r), r - s, ps.rough[w] != 0});
+    }
+  }
+  return out;
+}
+
+template <int D>
+ContactImpulse<D> resolve_wall_contacts(ClusterMotion<D>& motion, std::span<const WallContact<D>> contacts, bool spins,
+                                        double dt, double mu, double tolerance, int max_sweeps) {
+  ContactImpulse<D> total;
+  if (contacts.empty()) return total;
+  Body<D> body{1.0 / motion.mass, inverse_inertia<D>(motion.inertia, spins), motion.velocity, motion.omega};
+  std::vector<double> normal(contacts.size(), 0.0);
+  std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>> friction(contacts.size(), Vec<D>::Zero());
+  for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+    double largest = 0.0, change = 0.0;
+    for (std::size_t k = 0; k < contacts.size(); ++k) {
+      const WallContact<D>& c = contacts[k];
+      const double allowed = -std::max(c.gap, 0.0) / dt;  // the approach that just closes the gap
+      const double un = body.point_velocity(c.arm).dot(c.normal);
+      const double lambda = std::max(0.0, normal[k] + (allowed - un) / body.inv_effective_mass(c.arm, c.normal));
+      body.apply(c.arm, (lambda - normal[k]) * c.normal);
+      change = std::max(change, std::abs(lambda - normal[k]));
+      normal[k] = lambda;
+      if (c.rough && mu > 0.0) change = std::max(change, friction_step<D>(body, c, friction[k], mu * lambda).norm());
+      largest = std::max(largest, lambda);
+    }
+    total.iterations = sweep + 1;
+    if (change <= tolerance * largest) break;
+  }
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    total.normal += normal[k] * contacts[k].normal;
+    total.tangential += friction[k];
+    motion.momentum += normal[k] * contacts[k].normal + friction[k];
+    motion.angular_momentum += moment<D>(contacts[k].arm, Vec<D>(normal[k] * contacts[k].normal + friction[k]));
+  }
+  motion.velocity = body.v;
+  motion.omega = body.omega;
+  return total;
+}
+
+template <int D>
+void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
+                                 std::span<const std::vector<std::size_t>> clusters,
+                                 std::vector<ClusterMotion<D>>& motions, double dt, double mu) {
+  const auto n = static_cast<std::int64_t>(clusters.size());
+#pragma omp parallel for schedule(dynamic)
+  for (std::int64_t c = 0; c < n; ++c) {
+    const auto contacts = cluster_wall_contacts<D>(ps, nb, clusters[c], motions[c].centre);
+    resolve_wall_contacts<D>(motions[c], contacts, clusters[c].size() > 1, dt, mu);
+  }
+}
+
+#define SC_INSTANTIATE(D)                                                                                             \
+  template std::vector<WallContact<D>> cluster_wall_contacts<D>(const ParticleSet<D>&, const NeighbourGrid<D>&,     \
+                                                                std::span<const std::size_t>, const Vec<D>&);         \
+  template ContactImpulse<D> resolve_wall_contacts<D>(ClusterMotion<D>&, std::span<const WallContact<D>>, bool,     \
+                                                      double, double, double, int);                                          \
+  template void constrain_clusters_by_walls<D>(const ParticleSet<D>&, const NeighbourGrid<D>&,                        \
+                                               std::span<const std::vector<std::size_t>>, std::vector<ClusterMotion<D>>&, \
+                                               double, double);
+SC_INSTANTIATE(2)
+SC_INSTANTIATE(3)
+#undef SC_INSTANTIATE
+
+}  // namespace sc

@@ -1,0 +1,125 @@
+// Collision of particles with the box tank's walls (Müller, Charypar & Gross 2003: collision
+// detection and response at container walls; perfectly inelastic, slip or no-slip per side).
+#include <boost/test/unit_test.hpp>
+
+#include "boundary/wall_collision.hpp"
+#include "simulator/simulator.hpp"
+
+using namespace sc;
+
+namespace {
+
+/// A 1 m x 1 m tank: slip side walls, a no-slip floor, an open top; walls 0.02 m thick.
+TankSpec open_tank() {
+  TankSpec t;
+  t.min = {0.0, 0.0};
+  t.max = {1.0, 1.0};
+  t.sides = {{"x-", "slip"}, {"x+", "slip"}, {"y-", "no_slip"}, {"y+", "open"}};
+  return t;
+}
+
+/// One water particle at x with velocity v, moved by one step dt of free flight; returns the set and
+/// its position before the move in `start`.
+ParticleSet<2> moved_particle(const Vec<2>& x, const Vec<2>& v, double dt, ParticleSet<2>::VecArray& start) {
+  ParticleSet<2> ps;
+  const std::size_t i = ps.append();
+  ps.x[i] = x;
+  ps.v[i] = v;
+  ps.m[i] = 1e-3;
+  ps.h[i] = 0.02;
+  ps.rho0[i] = ps.rho[i] = 1000.0;
+  start = ps.x;
+  ps.x[i] += dt * v;
+  return ps;
+}
+
+double kinetic_energy(const ParticleSet<2>& ps) { return 0.5 * ps.m[0] * ps.v[0].squaredNorm(); }
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(wall_collision)
+
+BOOST_AUTO_TEST_CASE(slip_wall_stops_the_normal_velocity_and_keeps_the_tangential) {
+  // A particle 1 mm from the x+ wall at 7 m/s (the splash speed of thesis_bunny_winnie) crosses it
+  // within the step; it ends on the wall with v_n = 0 and its tangential velocity unchanged.
+  const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
+  ParticleSet<2>::VecArray start;
+  ParticleSet<2> ps = moved_particle(Vec<2>(0.999, 0.5), Vec<2>(7.0, -1.5), 0.001, start);
+  const double e0 = kinetic_energy(ps);
+  BOOST_TEST(collide_with_tank(ps, walls, start) == 1);
+  BOOST_TEST(ps.x[0][0] == 1.0);
+  BOOST_TEST(ps.x[0][1] == 0.5 - 0.0015, boost::test_tools::tolerance(1e-15));  // tangential motion kept
+  BOOST_TEST(ps.v[0][0] == 0.0);
+  BOOST_TEST(ps.v[0][1] == -1.5);
+  BOOST_TEST(kinetic_energy(ps) < e0);
+}
+
+BOOST_AUTO_TEST_CASE(no_slip_floor_brings_the_particle_to_rest_on_it) {
+  const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
+  ParticleSet<2>::VecArray start;
+  ParticleSet<2> ps = moved_particle(Vec<2>(0.3, 0.002), Vec<2>(3.0, -4.0), 0.001, start);
+  BOOST_TEST(collide_with_tank(ps, walls, start) == 1);
+  BOOST_TEST(ps.x[0][1] == 0.0);
+  BOOST_TEST(ps.v[0].norm() == 0.0);
+  // An inward velocity is the particle's own: the collision rule never touches it.
+  BOOST_TEST((wall_collision_velocity<2>(Vec<2>(3.0, 4.0), Vec<2>(0.0, -1.0), true) - Vec<2>(0.0, 4.0)).norm() == 0.0);
+  BOOST_TEST((wall_collision_velocity<2>(Vec<2>(3.0, 4.0), Vec<2>(0.0, -1.0), false) - Vec<2>(3.0, 4.0)).norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(particle_driven_into_a_corner_ends_in_the_corner) {
+  const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
+  ParticleSet<2>::VecArray start;
+  ParticleSet<2> ps = moved_particle(Vec<2>(0.998, 0.001), Vec<2>(5.0, -5.0), 0.001, start);
+  BOOST_TEST(collide_with_tank(ps, walls, start) == 1);
+  BOOST_TEST((ps.x[0] - Vec<2>(1.0, 0.0)).norm() == 0.0);
+  BOOST_TEST(ps.v[0].norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(particle_over_the_rim_of_an_open_tank_is_left_alone) {
+  // The x+ wall ends at the rim y = 1 (the top is open): a splash above it crosses the plane freely,
+  // and so does a particle already outside (it went over the rim earlier).
+  const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
+  ParticleSet<2>::VecArray start;
+  ParticleSet<2> over = moved_particle(Vec<2>(0.999, 1.05), Vec<2>(7.0, 0.0), 0.001, start);
+  BOOST_TEST(collide_with_tank(over, walls, start) == 0);
+  BOOST_TEST(over.x[0][0] == 0.999 + 0.007, boost::test_tools::tolerance(1e-15));
+  ParticleSet<2> outside = moved_particle(Vec<2>(1.05, 0.5), Vec<2>(-1.0, -1.0), 0.001, start);
+  BOOST_TEST(collide_with_tank(outside, walls, start) == 0);
+}
+
+BOOST_AUTO_TEST_CASE(thrown_particle_never_leaves_a_slip_box_and_only_loses_energy) {
+  // A lone water particle (no wall particles: the collision alone holds it) thrown at 20 m/s down and
+  // sideways in a 2-D tank with slip walls under gravity: at every step it is inside the tank, its
+  // mechanical energy ½ m v² + m g y never exceeds the start value (the inelastic collisions only
+  // remove energy; the lift onto the floor, m g δ with δ ≤ v_n Δt, is paid by the removed ½ m v_n²),
+  // and it ends at rest in the floor's corner x = 1, y = 0.
+  ParticleSet<2>::VecArray start;
+  const ParticleSet<2> ps = moved_particle(Vec<2>(0.5, 0.5), Vec<2>(12.0, -16.0), 0.0, start);
+  SimulationParams params;
+  params.gravity = {0.0, -9.81};
+  params.domain_min = {-0.1, -0.1};
+  params.domain_max = {1.1, 2.0};
+  TankSpec tank = open_tank();
+  tank.sides["y-"] = "slip";
+  params.tank = tank;
+  params.tank_wall_thickness = 0.02;
+  Simulator<2> sim(ps, params);
+  const auto energy = [&] {
+    const auto& p = sim.particles();
+    return 0.5 * p.m[0] * p.v[0].squaredNorm() + p.m[0] * 9.81 * p.x[0][1];
+  };
+  const double e0 = energy();
+  bool inside = true, bounded = true;
+  for (int s = 0; s < 500; ++s) {
+    sim.step();
+    const Vec<2>& x = sim.particles().x[0];
+    inside = inside && x[0] >= 0.0 && x[0] <= 1.0 && x[1] >= 0.0;
+    bounded = bounded && energy() <= e0;
+  }
+  BOOST_TEST(inside);
+  BOOST_TEST(bounded);
+  BOOST_TEST((sim.particles().x[0] - Vec<2>(1.0, 0.0)).norm() == 0.0);
+  BOOST_TEST(sim.particles().v[0].norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
