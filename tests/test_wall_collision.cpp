@@ -112,6 +112,7 @@ BOOST_AUTO_TEST_CASE(thrown_particle_never_leaves_a_slip_box_and_only_loses_ener
   params.domain_max = {1.1, 2.0};
   TankSpec tank = open_tank();
   tank.sides["y-"] = "slip";
+  tank.collision = true;
   params.tank = tank;
   params.tank_wall_thickness = 0.02;
   Simulator<2> sim(ps, params);
