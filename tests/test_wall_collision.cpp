@@ -75,6 +75,17 @@ BOOST_AUTO_TEST_CASE(particle_driven_into_a_corner_ends_in_the_corner) {
   BOOST_TEST(ps.v[0].norm() == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(particle_created_inside_the_floor_layers_is_put_on_the_floor) {
+  // Water the porous flow emits below a sand grain resting on the floor can start inside the wall's
+  // layers (thesis_bunny_winnie: one fell out of the tank at step 763); it is put on the floor.
+  const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
+  ParticleSet<2>::VecArray start;
+  ParticleSet<2> ps = moved_particle(Vec<2>(0.4, -0.008), Vec<2>(0.5, -2.0), 0.001, start);
+  BOOST_TEST(collide_with_tank(ps, walls, start) == 1);
+  BOOST_TEST((ps.x[0] - Vec<2>(0.4005, 0.0)).norm() <= 1e-15);
+  BOOST_TEST(ps.v[0].norm() == 0.0);
+}
+
 BOOST_AUTO_TEST_CASE(particle_over_the_rim_of_an_open_tank_is_left_alone) {
   // The x+ wall ends at the rim y = 1 (the top is open): a splash above it crosses the plane freely,
   // and so does a particle already outside (it went over the rim earlier).
@@ -101,6 +112,7 @@ BOOST_AUTO_TEST_CASE(thrown_particle_never_leaves_a_slip_box_and_only_loses_ener
   params.domain_max = {1.1, 2.0};
   TankSpec tank = open_tank();
   tank.sides["y-"] = "slip";
+  tank.collision = true;
   params.tank = tank;
   params.tank_wall_thickness = 0.02;
   Simulator<2> sim(ps, params);

@@ -5,6 +5,7 @@ namespace sc {
 template <int D>
 TankWalls<D> TankWalls<D>::from_tank(const TankSpec& tank, double thickness) {
   TankWalls w;
+  w.thickness = thickness;
   const char* axes = "xyz";
   for (int d = 0; d < D; ++d) {
     w.extent_min[d] = tank.min[d];
@@ -22,15 +23,20 @@ TankWalls<D> TankWalls<D>::from_tank(const TankSpec& tank, double thickness) {
 
 namespace {
 
-/// Whether the path from a (on the tank's side of the plane) to b crosses the side's plane at a
-/// point of its wall.
+/// Whether the particle that moved from a to b this step hits the side's wall: its path crossed the
+/// side's plane from the tank's side, or it ends within the wall's layers (it started there, e.g.
+/// emitted by the porous flow at a sand particle on the floor); and the crossing point (or b)
+/// lies in front of the wall.
 template <int D>
-bool crosses_wall(const TankWalls<D>& walls, const typename TankWalls<D>::Side& s, const Vec<D>& a, const Vec<D>& b) {
+bool hits_wall(const TankWalls<D>& walls, const typename TankWalls<D>::Side& s, const Vec<D>& a, const Vec<D>& b) {
   const int k = s.axis;
-  if (s.outward * (a[k] - s.position) > 0.0 || s.outward * (b[k] - s.position) <= 0.0) return false;
-  const double t = (s.position - a[k]) / (b[k] - a[k]);
-  Vec<D> hit = a + t * (b - a);
-  hit[k] = s.position;
+  const double depth_a = s.outward * (a[k] - s.position), depth_b = s.outward * (b[k] - s.position);
+  if (depth_b <= 0.0) return false;
+  Vec<D> hit = b;
+  if (depth_a <= 0.0)
+    hit = a + ((s.position - a[k]) / (b[k] - a[k])) * (b - a);
+  else if (depth_b > walls.thickness)
+    return false;
   for (int e = 0; e < D; ++e)
     if (e != k && (hit[e] < walls.extent_min[e] || hit[e] > walls.extent_max[e])) return false;
   return true;
@@ -48,7 +54,7 @@ long collide_with_tank(ParticleSet<D>& ps, const TankWalls<D>& walls,
     if (!ps.moves(i)) continue;
     bool hit_any = false;
     for (const auto& s : walls.sides) {
-      if (!crosses_wall(walls, s, x_start[i], ps.x[i])) continue;
+      if (!hits_wall(walls, s, x_start[i], ps.x[i])) continue;
       Vec<D> normal = Vec<D>::Zero();
       normal[s.axis] = s.outward;
       ps.x[i][s.axis] = s.position;

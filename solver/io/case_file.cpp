@@ -70,6 +70,7 @@ void read_tank(JsonObject o, CaseSpec& c) {
   for (const auto& name : side_names(c.dimension))
     t.sides[name] = sides.one_of(name, {"no_slip", "slip", "open"});
   sides.finish();
+  t.collision = o.boolean("collision", false);
   o.finish();
   c.tank = t;
 }

@@ -29,6 +29,9 @@ struct BlockSpec {
 struct TankSpec {
   std::vector<double> min, max;
   std::map<std::string, std::string> sides;
+  /// Closed sides also stop moving particles by collision (boundary/wall_collision.hpp), behind the
+  /// wall particles: for scenes whose splashes are too fast for the wall particles alone.
+  bool collision = false;
 };
 
 struct TierSpec {

@@ -67,7 +67,7 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params)
   lo_ = to_vec<D>(params_.domain_min);
   hi_ = to_vec<D>(params_.domain_max);
   for (std::size_t i = 0; i < ps_.size(); ++i) has_sand_ = has_sand_ || ps_.phase_of(i) == Phase::Sand;
-  if (params_.tank) tank_walls_ = TankWalls<D>::from_tank(*params_.tank, params_.tank_wall_thickness);
+  if (params_.tank && params_.tank->collision) tank_walls_ = TankWalls<D>::from_tank(*params_.tank, params_.tank_wall_thickness);
   last_dt_ = params_.dt_max;
   check_state();
 }
