@@ -13,6 +13,10 @@ inline bool are_neighbours(double r2, double hi, double hj) {
   return r2 <= hmax * hmax;
 }
 
+// The same rule on squared supports: squaring is monotone in floating point, so
+// max(hi, hj)^2 = max(hi^2, hj^2) bitwise.
+inline bool are_neighbours_squared(double r2, double hi2, double hj2) { return r2 <= std::max(hi2, hj2); }
+
 // Particles per chunk of the pair search: chunks are the unit of work sharing, fixed in size so the
 // result does not depend on the number of threads.
 constexpr std::size_t kChunk = 512;
@@ -63,13 +67,12 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
   }
   for (std::size_t i = 0; i < n; ++i) ++slot_start_[slot_of_[i] + 2];
   for (std::size_t s = 1; s < slot_start_.size(); ++s) slot_start_[s] += slot_start_[s - 1];
-  xs_.resize(n);
-  hs_.resize(n);
+  candidates_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t k = slot_start_[slot_of_[i] + 1]++;
-    sorted_[k] = i;
-    xs_[k] = ps.x[i];
-    hs_[k] = ps.h[i];
+    sorted_[k] = static_cast<std::uint32_t>(i);
+    candidates_[k].x = ps.x[i];
+    candidates_[k].h2 = ps.h[i] * ps.h[i];
   }
   mark_cells_near_moving(cells);
 }
@@ -105,7 +108,7 @@ template <int D>
 void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out) const {
   if (inert_[i] && !near_moving_[slot_of_[i] / 2]) return;  // no non-inert particle within reach
   const Vec<D> xi = ps.x[i];
-  const double hi = ps.h[i];
+  const double hi2 = ps.h[i] * ps.h[i];
   std::array<std::int64_t, D> c0{};
   std::array<std::array<double, 3>, D> gap2{};  // squared distance from x_i to the cells at offset -1, 0, +1
   for (int d = 0; d < D; ++d) {
@@ -154,7 +157,7 @@ void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i
   for (std::size_t r = 0; r < ranges; ++r)
     for (std::uint32_t k = begin[r]; k < end[r]; ++k) {
       *w = sorted_[k];
-      w += are_neighbours((xi - xs_[k]).squaredNorm(), hi, hs_[k]);
+      w += are_neighbours_squared((xi - candidates_[k].x).squaredNorm(), hi2, candidates_[k].h2);
     }
   out.resize(static_cast<std::size_t>(w - out.data()));
 }
@@ -162,9 +165,9 @@ void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i
 template <int D>
 const std::vector<std::size_t>& NeighbourGrid<D>::storage_order() {
   storage_order_.clear();
-  for (const std::size_t i : sorted_)
+  for (const std::uint32_t i : sorted_)
     if (!inert_[i]) storage_order_.push_back(i);
-  for (const std::size_t i : sorted_)
+  for (const std::uint32_t i : sorted_)
     if (inert_[i]) storage_order_.push_back(i);
   return storage_order_;
 }

@@ -51,13 +51,17 @@ class NeighbourGrid {
   std::vector<std::size_t> offset_;
   std::vector<std::uint32_t> index_;
   std::vector<std::vector<std::uint32_t>> chunk_lists_;  // per chunk of particles, joined into index_
-  std::vector<std::size_t> sorted_;       // particle indices ordered by (cell, inert, index)
+  // A candidate of the pair search: position and squared support, packed for the scan's one pass.
+  struct Candidate {
+    Vec<D> x;
+    double h2;
+  };
+  std::vector<std::uint32_t> sorted_;     // particle indices ordered by (cell, inert, index)
   std::vector<std::uint32_t> slot_start_; // start in sorted_ of slot 2c (non-inert of cell c) and 2c + 1 (inert)
   std::vector<std::uint64_t> slot_of_;    // slot of each particle
   std::vector<std::uint8_t> inert_;
   std::vector<std::uint8_t> near_moving_, spread_;  // per cell: a non-inert particle in the 3^D block (bin)
-  typename ParticleSet<D>::VecArray xs_;  // positions in sorted_ order
-  std::vector<double> hs_;                // support radii in sorted_ order
+  std::vector<Candidate, Eigen::aligned_allocator<Candidate>> candidates_;  // in sorted_ order
   std::array<std::int64_t, D> dims_{};
   Vec<D> lo_;
   double cell_ = 0.0;

@@ -317,7 +317,9 @@ void diffuse_literal(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double dt, 
 template <int D>
 void rest_density_of_water(ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w) {
   const double self = kernel::density_kernel<D>(p.density_kernel, 0.0, p.water_support);
-  for (std::size_t i = 0; i < ps.size(); ++i)
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
     if (w.part[i] && !w.porous[i]) ps.rho0[i] = p.fluid_density - (p.water_mass - ps.m[i]) * self;
 }
 

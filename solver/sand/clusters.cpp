@@ -1,13 +1,19 @@
 #include "sand/clusters.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace sc {
 
 template <int D>
 Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb) {
-  std::fill(ps.cluster.begin(), ps.cluster.end(), 0);
-  auto joins = [&](std::size_t i) { return ps.phase_of(i) == Phase::Sand && ps.rigid[i] && ps.cluster[i] == 0; };
+  // -1 marks the particles that never join (all but rigid sand), in parallel, so the serial
+  // search below reads one field per neighbour; they get 0 (no cluster) back at the end.
+  constexpr std::int32_t kNever = -1;
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) ps.cluster[i] = ps.phase_of(i) == Phase::Sand && ps.rigid[i] ? 0 : kNever;
+  auto joins = [&](std::size_t i) { return ps.cluster[i] == 0; };
   Clusters clusters;
   for (std::size_t seed = 0; seed < ps.size(); ++seed) {
     if (!joins(seed)) continue;
@@ -23,6 +29,8 @@ Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb) {
         }
     }
   }
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) ps.cluster[i] = std::max(ps.cluster[i], 0);
   return clusters;
 }
 

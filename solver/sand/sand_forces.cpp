@@ -23,15 +23,17 @@ double rigid_length(const ParticleSet<D>& ps, std::size_t i, const SandParams& s
   return sand.rigid_length == RigidStressLength::Support ? ps.h[i] : rest_spacing<D>(ps.m[i], ps.rho[i]);
 }
 
-/// Contact law and distance of the pair (i, j); a wall particle counts as infinitely heavy.
+/// Contact force on i from j (contact_force). The law (a wall particle counts as infinitely heavy)
+/// is built only for a pair that overlaps: any other pair gets zero from contact_force anyway.
 template <int D>
-std::pair<ContactLaw, double> pair_contact(const ParticleSet<D>& ps, std::size_t i, std::size_t j,
-                                           const SandParams& sand, double sound_speed, double dt) {
+Vec<D> pair_contact_force(const ParticleSet<D>& ps, std::size_t i, std::size_t j, const Vec<D>& d, double r,
+                          const SandParams& sand, double sound_speed, double dt) {
   const double s = 0.5 * (rest_spacing<D>(ps.m[i], ps.rho0[i]) + rest_spacing<D>(ps.m[j], ps.rho0[j]));
+  if (!(r < s)) return Vec<D>::Zero();
   const double mj = ps.moves(j) ? ps.m[j] : 0.0;
-  return {contact_law(ps.m[i], mj, s, sound_speed, sand.contact_damping,
-                      std::tan(sand.friction_angle_deg * pi / 180.0), dt),
-          s};
+  const ContactLaw law = contact_law(ps.m[i], mj, s, sound_speed, sand.contact_damping,
+                                     std::tan(sand.friction_angle_deg * pi / 180.0), dt);
+  return contact_force<D>(law, d, r, ps.v[i], ps.v[j], s);
 }
 
 }  // namespace
@@ -88,8 +90,7 @@ void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandP
         if (sand.viscosity > 0.0) f += viscosity_pair_force<D>(sand.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
         continue;
       }
-      const auto [law, s] = pair_contact(ps, i, j, sand, sound_speed, dt);
-      const Vec<D> fc = contact_force<D>(law, d, r, ps.v[i], ps.v[j], s);
+      const Vec<D> fc = pair_contact_force(ps, i, j, d, r, sand, sound_speed, dt);
       f += fc;
       if (ps.moves(j)) f += viscosity_pair_force<D>(water.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
       else if (ps.rough[j]) wall += fp + fc;
@@ -132,8 +133,7 @@ void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, cons
     for (const auto j : nb.of(i)) {
       if (!is_sand(ps.phase[j])) continue;
       const Vec<D> d = ps.x[i] - ps.x[j];
-      const auto [law, s] = pair_contact(ps, i, j, sand, sound_speed, dt);
-      f += contact_force<D>(law, d, d.norm(), ps.v[i], ps.v[j], s);
+      f += pair_contact_force(ps, i, j, d, d.norm(), sand, sound_speed, dt);
     }
     ps.force[i] += f;
   }
@@ -150,8 +150,7 @@ void add_partial_water_wall_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& 
     for (const auto j : nb.of(i)) {
       if (ps.phase_of(j) != Phase::Boundary || ps.porosity[j] != 0.0) continue;
       const Vec<D> d = ps.x[i] - ps.x[j];
-      const auto [law, s] = pair_contact(ps, i, j, sand, sound_speed, dt);
-      f += contact_force<D>(law, d, d.norm(), ps.v[i], ps.v[j], s);
+      f += pair_contact_force(ps, i, j, d, d.norm(), sand, sound_speed, dt);
     }
     ps.force[i] += f;
   }
