@@ -10,6 +10,7 @@
 // spacing; the whole cluster fell freely until the overlap built up, bounced on springs with a
 // cluster damping ratio of 0.02 and went through the two wall layers (measured: 6 cm by t = 0.2 s).
 #pragma once
+#include <cmath>
 #include <span>
 #include <vector>
 
@@ -31,11 +32,12 @@ struct WallContact {
 };
 
 /// The contacts of the members of one cluster with the solid (non-porous) wall particles among
-/// their neighbours, in member order and neighbour-list order (deterministic). The arms are taken
-/// about `centre`.
+/// their neighbours, in member order and neighbour-list order (deterministic), whose gap is at most
+/// `max_gap` [m]. The arms are taken about `centre`.
 template <int D>
 std::vector<WallContact<D>> cluster_wall_contacts(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
-                                                  std::span<const std::size_t> members, const Vec<D>& centre);
+                                                  std::span<const std::size_t> members, const Vec<D>& centre,
+                                                  double max_gap = INFINITY);
 
 /// Result of resolve_wall_contacts: the impulses the walls gave the cluster in the step.
 template <int D>
