@@ -84,10 +84,13 @@ void ParticleSet<D>::permute(const std::vector<std::size_t>& order) {
 
 template <int D>
 void ParticleSet<D>::copy_from(const ParticleSet& other) {
+  visit_fields_with(other, [](auto& field, const auto& src) { field.resize(src.size()); });
+  // One parallel region for all fields (not one per field): each thread copies its share of
+  // every field, without a barrier between the fields.
+#pragma omp parallel
   visit_fields_with(other, [](auto& field, const auto& src) {
-    field.resize(src.size());
     const auto n = static_cast<std::int64_t>(src.size());
-#pragma omp parallel for schedule(static)
+#pragma omp for schedule(static) nowait
     for (std::int64_t k = 0; k < n; ++k) field[k] = src[k];
   });
   remove_flag_ = other.remove_flag_;

@@ -2,6 +2,7 @@
 #pragma once
 #include <array>
 #include <chrono>
+#include <optional>
 #include <string_view>
 
 namespace sc {
@@ -11,28 +12,40 @@ enum class Stage { Neighbours, Porous, Density, Forces, Clusters, Adaptive, Inte
 inline constexpr std::array<std::string_view, static_cast<std::size_t>(Stage::Count)> stage_names = {
     "neighbours", "porous", "density", "forces", "clusters", "adaptive", "integration", "output"};
 
+/// Exclusive stage times: every instant counts in exactly one stage. A scope opened inside another
+/// one pauses the outer stage until it closes, so nested scopes never count twice and an outer
+/// scope collects whatever its inner scopes leave untimed.
 class StageTimers {
  public:
-  /// Times the enclosing scope and adds it to `stage`.
+  using Clock = std::chrono::steady_clock;
+  /// Times the enclosing scope and adds it to `stage` (minus the scopes opened inside it).
   class Scope {
    public:
-    Scope(StageTimers& t, Stage s) : t_(t), s_(s), start_(std::chrono::steady_clock::now()) {}
-    ~Scope() {
-      t_.seconds_[static_cast<std::size_t>(s_)] +=
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    }
+    Scope(StageTimers& t, Stage s) : t_(t), outer_(t.active_) { t_.switch_to(s); }
+    ~Scope() { t_.switch_to(outer_); }
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
 
    private:
     StageTimers& t_;
-    Stage s_;
-    std::chrono::steady_clock::time_point start_;
+    std::optional<Stage> outer_;
   };
   Scope time(Stage s) { return Scope(*this, s); }
   double seconds(Stage s) const { return seconds_[static_cast<std::size_t>(s)]; }
   void reset() { seconds_.fill(0.0); }
 
  private:
+  /// Charges the time since the last switch to the active stage, then makes `s` the active one.
+  void switch_to(std::optional<Stage> s) {
+    const Clock::time_point now = Clock::now();
+    if (active_) seconds_[static_cast<std::size_t>(*active_)] += std::chrono::duration<double>(now - since_).count();
+    active_ = s;
+    since_ = now;
+  }
+
   std::array<double, static_cast<std::size_t>(Stage::Count)> seconds_{};
+  std::optional<Stage> active_;
+  Clock::time_point since_{};
 };
 
 }  // namespace sc

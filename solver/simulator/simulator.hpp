@@ -97,9 +97,9 @@ class Simulator {
   MatArray<D> correction_;  // kernel-gradient corrections of the current step
   MatArray<D> sand_stress_;   // tension-positive frictional stress −σ_f of each sand particle (eq 8)
   VecArrayOf<D> predicted_velocity_;  // v* of the yield test (update_sand_state)
-  VecArrayOf<D> wall_force_;
+  VecArrayOf<D> wall_force_;  // push of rough walls on each sand particle (normal of the wall friction)
   std::optional<TankWalls<D>> tank_walls_;  // closed sides of the case's tank (collision planes)
-  VecArrayOf<D> x_start_;     // positions before the step's move (the collision's path start)  // push of rough walls on each sand particle (normal of the wall friction)
+  VecArrayOf<D> x_start_;     // positions of the moving particles before the step's move (the collision's path start)
   PorousWork<D> porous_work_;  // buffers of the porous step
   Clusters clusters_;         // rigid sand clusters of the current step
   bool has_sand_ = false;
