@@ -46,16 +46,21 @@ std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Cl
 template <int D>
 void move_clusters(ParticleSet<D>& ps, const Clusters& clusters, const std::vector<ClusterMotion<D>>& motions,
                    double dt, double damping) {
-  const auto n = static_cast<std::int64_t>(clusters.size());
-#pragma omp parallel for schedule(dynamic)
-  for (std::int64_t c = 0; c < n; ++c) {
+  // The turn of every cluster first, then every member on its own (ps.cluster names its cluster),
+  // so the members of one large cluster are shared among the threads.
+  std::vector<Mat<D>, Eigen::aligned_allocator<Mat<D>>> turns(clusters.size());
+  const auto nc = static_cast<std::int64_t>(clusters.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t c = 0; c < nc; ++c) turns[c] = rotation<D>(dt * motions[c].omega);
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (ps.cluster[i] == 0) continue;
+    const auto c = static_cast<std::size_t>(ps.cluster[i] - 1);
     const ClusterMotion<D>& motion = motions[c];
-    const Mat<D> R = rotation<D>(dt * motion.omega);
     const Vec<D> centre = motion.centre + dt * motion.velocity;
-    for (const auto i : clusters[c]) {
-      ps.x[i] = rigid_position<D>(motion, R, ps.x[i], dt);
-      ps.v[i] = damping * (motion.velocity + spin_velocity<D>(motion.omega, ps.x[i] - centre));
-    }
+    ps.x[i] = rigid_position<D>(motion, turns[c], ps.x[i], dt);
+    ps.v[i] = damping * (motion.velocity + spin_velocity<D>(motion.omega, ps.x[i] - centre));
   }
 }
 

@@ -25,7 +25,8 @@ template <int D>
 std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt);
 
 /// Moves the members of every cluster rigidly by one step: x ← r_cm + Δt v_cm + R(ωΔt)(x − r_cm),
-/// then v ← damping (v_cm + ω × (x − r_cm_new)), eq 18 in its corrected form.
+/// then v ← damping (v_cm + ω × (x − r_cm_new)), eq 18 in its corrected form. The members are
+/// found by ps.cluster (as find_clusters writes it).
 template <int D>
 void move_clusters(ParticleSet<D>& ps, const Clusters& clusters, const std::vector<ClusterMotion<D>>& motions,
                    double dt, double damping);

@@ -57,6 +57,16 @@ Vec<D> friction_step(Body<D>& body, const WallContact<D>& c, Vec<D>& accumulated
   return change;
 }
 
+/// The sweeps' data of one contact: its allowed normal velocity −max(g, 0)/Δt and normal inverse
+/// effective mass (fixed over the sweeps), and its accumulated normal and friction impulses.
+template <int D>
+struct ContactRow {
+  double allowed;
+  double normal_inv_mass;
+  double normal;
+  Vec<D> friction;
+};
+
 /// Contacts whose gap a member cannot close within the step at this many times the largest point
 /// speed of the cluster's unconstrained motion are left out of the sweeps: their impulse would stay
 /// zero (the impulses of resting contact only take kinetic energy out of the body). Without this
@@ -74,11 +84,13 @@ double largest_point_speed(const ParticleSet<D>& ps, std::span<const std::size_t
 
 }  // namespace
 
+namespace {
+
+/// cluster_wall_contacts, appended to `out` (whose storage a caller can keep between clusters).
 template <int D>
-std::vector<WallContact<D>> cluster_wall_contacts(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
-                                                  std::span<const std::size_t> members, const Vec<D>& centre,
-                                                  double max_gap) {
-  std::vector<WallContact<D>> out;
+void append_cluster_wall_contacts(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
+                                  std::span<const std::size_t> members, const Vec<D>& centre, double max_gap,
+                                  std::vector<WallContact<D>>& out) {
   for (const auto i : members) {
     const double si = rest_spacing<D>(ps.m[i], ps.rho0[i]);
     for (const auto w : nb.of(i)) {
@@ -91,6 +103,16 @@ std::vector<WallContact<D>> cluster_wall_contacts(const ParticleSet<D>& ps, cons
       out.push_back({Vec<D>(ps.x[i] - centre), Vec<D>(d / r), r - s, ps.rough[w] != 0});
     }
   }
+}
+
+}  // namespace
+
+template <int D>
+std::vector<WallContact<D>> cluster_wall_contacts(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
+                                                  std::span<const std::size_t> members, const Vec<D>& centre,
+                                                  double max_gap) {
+  std::vector<WallContact<D>> out;
+  append_cluster_wall_contacts<D>(ps, nb, members, centre, max_gap, out);
   return out;
 }
 
@@ -100,29 +122,35 @@ ContactImpulse<D> resolve_wall_contacts(ClusterMotion<D>& motion, std::span<cons
   ContactImpulse<D> total;
   if (contacts.empty()) return total;
   Body<D> body{1.0 / motion.mass, inverse_inertia<D>(motion.inertia, spins), motion.velocity, motion.omega};
-  std::vector<double> normal(contacts.size(), 0.0);
-  std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>> friction(contacts.size(), Vec<D>::Zero());
+  // What stays fixed over the sweeps is set once; the buffer is kept between calls (per thread).
+  thread_local std::vector<ContactRow<D>, Eigen::aligned_allocator<ContactRow<D>>> rows;
+  rows.resize(contacts.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+    rows[k] = {-std::max(contacts[k].gap, 0.0) / dt, body.inv_effective_mass(contacts[k].arm, contacts[k].normal), 0.0,
+               Vec<D>::Zero()};
   for (int sweep = 0; sweep < max_sweeps; ++sweep) {
     double largest = 0.0, change = 0.0;
     for (std::size_t k = 0; k < contacts.size(); ++k) {
       const WallContact<D>& c = contacts[k];
-      const double allowed = -std::max(c.gap, 0.0) / dt;  // the approach that just closes the gap
+      ContactRow<D>& row = rows[k];
       const double un = body.point_velocity(c.arm).dot(c.normal);
-      const double lambda = std::max(0.0, normal[k] + (allowed - un) / body.inv_effective_mass(c.arm, c.normal));
-      body.apply(c.arm, (lambda - normal[k]) * c.normal);
-      change = std::max(change, std::abs(lambda - normal[k]));
-      normal[k] = lambda;
-      if (c.rough && mu > 0.0) change = std::max(change, friction_step<D>(body, c, friction[k], mu * lambda).norm());
+      const double lambda = std::max(0.0, row.normal + (row.allowed - un) / row.normal_inv_mass);
+      body.apply(c.arm, (lambda - row.normal) * c.normal);
+      change = std::max(change, std::abs(lambda - row.normal));
+      row.normal = lambda;
+      if (c.rough && mu > 0.0) change = std::max(change, friction_step<D>(body, c, row.friction, mu * lambda).norm());
       largest = std::max(largest, lambda);
     }
     total.iterations = sweep + 1;
     if (change <= tolerance * largest) break;
   }
   for (std::size_t k = 0; k < contacts.size(); ++k) {
-    total.normal += normal[k] * contacts[k].normal;
-    total.tangential += friction[k];
-    motion.momentum += normal[k] * contacts[k].normal + friction[k];
-    motion.angular_momentum += moment<D>(contacts[k].arm, Vec<D>(normal[k] * contacts[k].normal + friction[k]));
+    const double normal = rows[k].normal;
+    const Vec<D>& friction = rows[k].friction;
+    total.normal += normal * contacts[k].normal;
+    total.tangential += friction;
+    motion.momentum += normal * contacts[k].normal + friction;
+    motion.angular_momentum += moment<D>(contacts[k].arm, Vec<D>(normal * contacts[k].normal + friction));
   }
   motion.velocity = body.v;
   motion.omega = body.omega;
@@ -134,11 +162,16 @@ void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D
                                  std::span<const std::vector<std::size_t>> clusters,
                                  std::vector<ClusterMotion<D>>& motions, double dt, double mu) {
   const auto n = static_cast<std::int64_t>(clusters.size());
-#pragma omp parallel for schedule(dynamic)
-  for (std::int64_t c = 0; c < n; ++c) {
-    const double reach = kContactReachFactor * largest_point_speed<D>(ps, clusters[c], motions[c]) * dt;
-    const auto contacts = cluster_wall_contacts<D>(ps, nb, clusters[c], motions[c].centre, reach);
-    resolve_wall_contacts<D>(motions[c], contacts, clusters[c].size() > 1, dt, mu);
+#pragma omp parallel
+  {
+    std::vector<WallContact<D>> contacts;  // kept over this thread's clusters
+#pragma omp for schedule(dynamic)
+    for (std::int64_t c = 0; c < n; ++c) {
+      const double reach = kContactReachFactor * largest_point_speed<D>(ps, clusters[c], motions[c]) * dt;
+      contacts.clear();
+      append_cluster_wall_contacts<D>(ps, nb, clusters[c], motions[c].centre, reach, contacts);
+      resolve_wall_contacts<D>(motions[c], contacts, clusters[c].size() > 1, dt, mu);
+    }
   }
 }
 
