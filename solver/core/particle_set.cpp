@@ -16,6 +16,7 @@ std::size_t ParticleSet<D>::append() {
   phase[i] = static_cast<std::uint8_t>(Phase::Water);
   rough[i] = 0;
   id[i] = next_id_++;
+  ++layout_;
   return i;
 }
 
@@ -68,6 +69,7 @@ bool ParticleSet<D>::compact() {
     additions_.clear();
     changed = true;
   }
+  if (changed) ++layout_;
   return changed;
 }
 
@@ -80,6 +82,7 @@ void ParticleSet<D>::permute(const std::vector<std::size_t>& order) {
     for (std::int64_t k = 0; k < n; ++k) out[k] = field[order[k]];
     field.swap(out);
   });
+  ++layout_;
 }
 
 template <int D>
@@ -93,6 +96,28 @@ void ParticleSet<D>::copy_from(const ParticleSet& other) {
 #pragma omp for schedule(static) nowait
     for (std::int64_t k = 0; k < n; ++k) field[k] = src[k];
   });
+  remove_flag_ = other.remove_flag_;
+  additions_ = other.additions_;
+  next_id_ = other.next_id_;
+  layout_ = other.layout_;
+}
+
+template <int D>
+void ParticleSet<D>::refresh_from(const ParticleSet& other) {
+  const auto n = static_cast<std::int64_t>(other.size());
+  std::vector<std::uint8_t> full(other.size());  // particles to copy in full
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (std::int64_t k = 0; k < n; ++k) full[k] = !(inert(k) && other.inert(k));
+    visit_fields_with(other, [&full, &other, n](auto& field, const auto& src) {
+      const void* f = &src;
+      const bool changes_at_walls = f == &other.rho || f == &other.p || f == &other.density_offset;
+#pragma omp for schedule(static) nowait
+      for (std::int64_t k = 0; k < n; ++k)
+        if (changes_at_walls || full[k]) field[k] = src[k];
+    });
+  }
   remove_flag_ = other.remove_flag_;
   additions_ = other.additions_;
   next_id_ = other.next_id_;

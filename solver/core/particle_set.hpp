@@ -83,8 +83,15 @@ class ParticleSet {
   /// Reorders every field: new index k holds old particle order[k].
   void permute(const std::vector<std::size_t>& order);
   /// Makes this a copy of `other` (as operator=, reusing this set's storage), copying the fields in
-  /// parallel: the blow-up guard copies the whole state every step.
+  /// parallel: the blow-up guard copies the state every step.
   void copy_from(const ParticleSet& other);
+  /// copy_from for a set that already holds `other`'s values except for the density, pressure and
+  /// density offset of its inert particles (inert() in both sets), and has its layout (layout()):
+  /// copies the other particles in full and those three fields of the inert ones. A step changes
+  /// nothing else of a fixed wall particle, and walls are most of a tank scene's particles.
+  void refresh_from(const ParticleSet& other);
+  /// Changes whenever the particles are reordered, removed or added (permute, compact, append).
+  std::uint64_t layout() const { return layout_; }
   /// Bytes of all positions and velocities hashed (FNV-1a 64), as 16 hex digits.
   std::string checksum() const;
 
@@ -99,6 +106,7 @@ class ParticleSet {
   std::vector<std::uint8_t> remove_flag_;
   std::vector<ParticleSet> additions_;  // zero or one element (a class cannot hold itself)
   std::int64_t next_id_ = 0;
+  std::uint64_t layout_ = 0;
 };
 
 std::string_view phase_name(Phase p);

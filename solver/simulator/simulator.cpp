@@ -200,7 +200,7 @@ double Simulator<D>::step() {
   // Whatever the stages below leave untimed (the blow-up guard's copy and check, the step size,
   // the compaction) counts as integration: the stage timers are exclusive (core/stage_timers.hpp).
   auto t = timers_.time(Stage::Integration);
-  last_good_.copy_from(ps_);
+  save_last_good();
   compute_forces();
   const double dt = stable_dt();
   if (has_sand_) {
@@ -222,11 +222,21 @@ double Simulator<D>::step() {
     check_state();
   } catch (const BlowUpError&) {
     ps_ = last_good_;
+    guard_synced_ = false;
     throw;
   }
+  guard_synced_ = true;
   time_ += dt;
   ++steps_;
   return dt;
+}
+
+template <int D>
+void Simulator<D>::save_last_good() {
+  if (guard_synced_ && last_good_.layout() == ps_.layout())
+    last_good_.refresh_from(ps_);
+  else
+    last_good_.copy_from(ps_);
 }
 
 template <int D>

@@ -54,7 +54,14 @@ class Simulator {
   double stable_dt() const;
 
   const ParticleSet<D>& particles() const { return ps_; }
-  ParticleSet<D>& particles() { return ps_; }
+  /// Mutable access: the next step copies the whole state for its blow-up guard (not only what a
+  /// step changes), so changes made through it must be made before that step.
+  ParticleSet<D>& particles() {
+    guard_synced_ = false;
+    return ps_;
+  }
+  /// The state at the start of the last step (the blow-up guard's copy).
+  const ParticleSet<D>& last_good() const { return last_good_; }
   const NeighbourGrid<D>& neighbours() const { return nb_; }
   const SimulationParams& params() const { return params_; }
   const Vec<D>& gravity() const { return g_; }
@@ -92,7 +99,12 @@ class Simulator {
   /// What is wrong with particle i, if anything.
   std::optional<StateError> state_error(std::size_t i) const;
 
+  /// last_good_ ← ps_ at the start of a step: only what a step can change (refresh_from) when
+  /// last_good_ holds the start of the previous step and nothing but that step changed ps_ since.
+  void save_last_good();
+
   ParticleSet<D> ps_, last_good_;
+  bool guard_synced_ = false;  // last_good_ is the start of the previous step, ps_ its end
   NeighbourGrid<D> nb_;
   MatArray<D> correction_;  // kernel-gradient corrections of the current step
   MatArray<D> sand_stress_;   // tension-positive frictional stress −σ_f of each sand particle (eq 8)
