@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <utility>
 
 namespace sc {
 
@@ -20,8 +21,9 @@ inline bool are_neighbours(double r2, double hi, double hj) {
 // result does not depend on the number of threads.
 constexpr std::size_t kChunk = 512;
 
-// Binning: particles are sorted in blocks of at least kSortBlock particles, one per thread.
-constexpr std::size_t kSortBlock = 4096;
+// Binning: particles are sorted in blocks of at least kSortBlock particles, one per thread, while
+// the slots are at most kSortSlotsPerParticle times the particles.
+constexpr std::size_t kSortBlock = 4096, kSortSlotsPerParticle = 4;
 
 // Two candidates of the pair search (GCC/Clang vector extension; SSE2 lanes on x86-64).
 using Pair = double __attribute__((vector_size(16)));
@@ -85,9 +87,11 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
 template <int D>
 void NeighbourGrid<D>::sort_by_slot(const ParticleSet<D>& ps) {
   const std::size_t n = ps.size(), slots = slot_start_.size() - 2;
-  // Blocks of at least kSortBlock particles, one if a block's counts would outweigh its particles.
+  // One block per thread, of at least kSortBlock particles; one block if the blocks' counts would
+  // outweigh the particles by far.
   const auto threads = static_cast<std::size_t>(omp_get_max_threads());
-  const auto blocks = static_cast<std::int64_t>(slots > n ? 1 : std::clamp<std::size_t>(n / kSortBlock, 1, threads));
+  const auto blocks = static_cast<std::int64_t>(
+      slots > kSortSlotsPerParticle * n ? 1 : std::clamp<std::size_t>(n / kSortBlock, 1, threads));
   auto block_range = [&](std::int64_t b) { return std::pair{b * n / blocks, (b + 1) * n / blocks}; };
   block_count_.resize(blocks * slots);
 #pragma omp parallel for schedule(static)
@@ -97,27 +101,18 @@ void NeighbourGrid<D>::sort_by_slot(const ParticleSet<D>& ps) {
     const auto [first, last] = block_range(b);
     for (std::size_t i = first; i < last; ++i) ++count[slot_of_[i]];
   }
-  // slot_start_[s] = start of slot s in sorted_ (= n for s >= slots); each block's count becomes
-  // its fill position.
+  // Each block's count becomes the start of its share within the slot; slot_start_[s + 1] is
+  // first the slot's size, after the prefix sum the start of slot s + 1 (= n past the last slot).
   const auto slot_count = static_cast<std::int64_t>(slots);
 #pragma omp parallel for schedule(static)
   for (std::int64_t s = 0; s < slot_count; ++s) {
-    std::uint32_t total = 0;
-    for (std::int64_t b = 0; b < blocks; ++b) total += block_count_[b * slots + s];
-    slot_start_[s + 1] = total;
+    std::uint32_t size = 0;
+    for (std::int64_t b = 0; b < blocks; ++b) size += std::exchange(block_count_[b * slots + s], size);
+    slot_start_[s + 1] = size;
   }
   slot_start_[0] = 0;
   for (std::size_t s = 1; s <= slots; ++s) slot_start_[s] += slot_start_[s - 1];
   slot_start_[slots + 1] = slot_start_[slots];
-#pragma omp parallel for schedule(static)
-  for (std::int64_t s = 0; s < slot_count; ++s) {
-    std::uint32_t position = slot_start_[s];
-    for (std::int64_t b = 0; b < blocks; ++b) {
-      const std::uint32_t c = block_count_[b * slots + s];
-      block_count_[b * slots + s] = position;
-      position += c;
-    }
-  }
   for (auto& c : cx_) c.resize(n + 1);
   ch2_.resize(n + 1);
   for (int d = 0; d < D; ++d) cx_[d][n] = 0.0;  // the padding
@@ -128,7 +123,7 @@ void NeighbourGrid<D>::sort_by_slot(const ParticleSet<D>& ps) {
     std::uint32_t* fill = block_count_.data() + b * slots;
     const auto [first, last] = block_range(b);
     for (std::size_t i = first; i < last; ++i) {
-      const std::uint32_t k = fill[slot_of_[i]]++;
+      const std::uint32_t k = slot_start_[slot_of_[i]] + fill[slot_of_[i]]++;
       sorted_[k] = static_cast<std::uint32_t>(i);
       for (int d = 0; d < D; ++d) cx_[d][k] = ps.x[i][d];
       ch2_[k] = ps.h[i] * ps.h[i];
