@@ -1,5 +1,7 @@
 // Grid neighbour search against brute force, with unequal support radii.
 #include <boost/test/unit_test.hpp>
+#include <algorithm>
+#include <omp.h>
 #include <random>
 #include <set>
 
@@ -51,6 +53,21 @@ BOOST_AUTO_TEST_CASE(grid_equals_brute_force_2d) { check_against_brute_force<2>(
 BOOST_AUTO_TEST_CASE(grid_equals_brute_force_3d) { check_against_brute_force<3>(2, 2000, false); }
 BOOST_AUTO_TEST_CASE(grid_with_walls_equals_brute_force_2d) { check_against_brute_force<2>(3, 1500, true); }
 BOOST_AUTO_TEST_CASE(grid_with_walls_equals_brute_force_3d) { check_against_brute_force<3>(4, 2000, true); }
+
+// Binning sorts in one block of particles per thread (with enough particles): the lists, in their
+// order, must be those of one thread.
+BOOST_AUTO_TEST_CASE(lists_do_not_depend_on_the_threads) {
+  const ParticleSet<3> ps = random_particles<3>(5, 20000, true);
+  const int threads = omp_get_max_threads();
+  NeighbourGrid<3> one, two;
+  omp_set_num_threads(1);
+  one.rebuild(ps);
+  omp_set_num_threads(2);
+  two.rebuild(ps);
+  omp_set_num_threads(threads);
+  BOOST_TEST(one.total_pairs() > 2 * ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) BOOST_TEST(std::ranges::equal(one.of(i), two.of(i)));
+}
 
 BOOST_AUTO_TEST_CASE(sorting_the_particles_only_relabels_the_lists) {
   // Putting the particles in the grid's storage order (ParticleSet::permute) relabels the lists and

@@ -1,8 +1,12 @@
 #include "neighbours/neighbour_grid.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
+#include <utility>
 
 namespace sc {
 
@@ -13,20 +17,29 @@ inline bool are_neighbours(double r2, double hi, double hj) {
   return r2 <= hmax * hmax;
 }
 
-// The same rule on squared supports: squaring is monotone in floating point, so
-// max(hi, hj)^2 = max(hi^2, hj^2) bitwise.
-inline bool are_neighbours_squared(double r2, double hi2, double hj2) { return r2 <= std::max(hi2, hj2); }
-
 // Particles per chunk of the pair search: chunks are the unit of work sharing, fixed in size so the
 // result does not depend on the number of threads.
 constexpr std::size_t kChunk = 512;
+
+// Binning: particles are sorted in blocks of at least kSortBlock particles, one per thread, while
+// the slots are at most kSortSlotsPerParticle times the particles.
+constexpr std::size_t kSortBlock = 4096, kSortSlotsPerParticle = 4;
+
+// Two candidates of the pair search (GCC/Clang vector extension; SSE2 lanes on x86-64).
+using Pair = double __attribute__((vector_size(16)));
+using PairMask = std::int64_t __attribute__((vector_size(16)));
+inline Pair load_pair(const double* p) {
+  Pair v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
 
 }  // namespace
 
 template <int D>
 void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
   const std::size_t n = ps.size();
-  sorted_.resize(n);
+  sorted_.resize(n + 1);
   if (n == 0) return;
   if (n >= UINT32_MAX) throw std::runtime_error("neighbour search: too many particles");
 
@@ -54,9 +67,6 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
 
   inert_.resize(n);
   slot_of_.resize(n);
-  // Stable counting sort by slot. Counts go to slot_start_[s + 2]; after the prefix sum
-  // slot_start_[s + 1] is the start of slot s, and filling advances it to the start of s + 1.
-  slot_start_.assign(2 * static_cast<std::size_t>(cells) + 2, 0);
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < count; ++i) {
     std::int64_t c = 0;
@@ -65,16 +75,60 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
     inert_[i] = ps.inert(i);
     slot_of_[i] = 2 * static_cast<std::uint64_t>(c) + inert_[i];
   }
-  for (std::size_t i = 0; i < n; ++i) ++slot_start_[slot_of_[i] + 2];
-  for (std::size_t s = 1; s < slot_start_.size(); ++s) slot_start_[s] += slot_start_[s - 1];
-  candidates_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t k = slot_start_[slot_of_[i] + 1]++;
-    sorted_[k] = static_cast<std::uint32_t>(i);
-    candidates_[k].x = ps.x[i];
-    candidates_[k].h2 = ps.h[i] * ps.h[i];
-  }
+  slot_start_.resize(2 * static_cast<std::size_t>(cells) + 2);
+  sort_by_slot(ps);
   mark_cells_near_moving(cells);
+}
+
+// Stable counting sort of the particles by slot (sorted_, cx_, ch2_, slot_start_). The particles
+// are split into fixed blocks of consecutive indices: each block counts its slots, a slot's range
+// is shared out to the blocks in block order, and each block fills its share in index order, so the
+// blocks run in parallel and the result is the serial sort's whatever the threads.
+template <int D>
+void NeighbourGrid<D>::sort_by_slot(const ParticleSet<D>& ps) {
+  const std::size_t n = ps.size(), slots = slot_start_.size() - 2;
+  // One block per thread, of at least kSortBlock particles; one block if the blocks' counts would
+  // outweigh the particles by far.
+  const auto threads = static_cast<std::size_t>(omp_get_max_threads());
+  const auto blocks = static_cast<std::int64_t>(
+      slots > kSortSlotsPerParticle * n ? 1 : std::clamp<std::size_t>(n / kSortBlock, 1, threads));
+  auto block_range = [&](std::int64_t b) { return std::pair{b * n / blocks, (b + 1) * n / blocks}; };
+  block_count_.resize(blocks * slots);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    std::uint32_t* count = block_count_.data() + b * slots;
+    std::fill(count, count + slots, 0);
+    const auto [first, last] = block_range(b);
+    for (std::size_t i = first; i < last; ++i) ++count[slot_of_[i]];
+  }
+  // Each block's count becomes the start of its share within the slot; slot_start_[s + 1] is
+  // first the slot's size, after the prefix sum the start of slot s + 1 (= n past the last slot).
+  const auto slot_count = static_cast<std::int64_t>(slots);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t s = 0; s < slot_count; ++s) {
+    std::uint32_t size = 0;
+    for (std::int64_t b = 0; b < blocks; ++b) size += std::exchange(block_count_[b * slots + s], size);
+    slot_start_[s + 1] = size;
+  }
+  slot_start_[0] = 0;
+  for (std::size_t s = 1; s <= slots; ++s) slot_start_[s] += slot_start_[s - 1];
+  slot_start_[slots + 1] = slot_start_[slots];
+  for (auto& c : cx_) c.resize(n + 1);
+  ch2_.resize(n + 1);
+  for (int d = 0; d < D; ++d) cx_[d][n] = 0.0;  // the padding
+  ch2_[n] = 0.0;
+  sorted_[n] = 0;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    std::uint32_t* fill = block_count_.data() + b * slots;
+    const auto [first, last] = block_range(b);
+    for (std::size_t i = first; i < last; ++i) {
+      const std::uint32_t k = slot_start_[slot_of_[i]] + fill[slot_of_[i]]++;
+      sorted_[k] = static_cast<std::uint32_t>(i);
+      for (int d = 0; d < D; ++d) cx_[d][k] = ps.x[i][d];
+      ch2_[k] = ps.h[i] * ps.h[i];
+    }
+  }
 }
 
 // near_moving_[c]: a non-inert particle lies in the 3^D block of cells around c. One pass per
@@ -101,12 +155,14 @@ void NeighbourGrid<D>::mark_cells_near_moving(std::int64_t cells) {
 // the list comes out ordered by cell. A non-inert particle scans each row as one range of sorted_
 // (the cells of a row are adjacent there); an inert one only the non-inert part of each cell.
 // Rows and end cells farther from x_i than the cell size (a bound on every pair's support) hold
-// no neighbour and are skipped, which leaves the list unchanged. The scan writes every candidate
-// and advances past it only if it is a neighbour (no branch to mispredict), into room reserved
-// for all candidates.
+// no neighbour and are skipped, which leaves the list unchanged. The scan tests two candidates at
+// a time, writes every candidate and advances past it only if it is a neighbour (no branch to
+// mispredict), into room reserved in `out` for all candidates after its first `used` entries;
+// returns the entries used then.
 template <int D>
-void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out) const {
-  if (inert_[i] && !near_moving_[slot_of_[i] / 2]) return;  // no non-inert particle within reach
+std::size_t NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out,
+                                                std::size_t used) const {
+  if (inert_[i] && !near_moving_[slot_of_[i] / 2]) return used;  // no non-inert particle within reach
   const Vec<D> xi = ps.x[i];
   const double hi2 = ps.h[i] * ps.h[i];
   std::array<std::int64_t, D> c0{};
@@ -151,23 +207,47 @@ void NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i
     while (d < D && ++off[d] > 1) off[d++] = -1;
     if (d == D) break;
   }
-  const std::size_t first = out.size();
-  out.resize(first + candidates);
-  std::uint32_t* w = out.data() + first;
-  for (std::size_t r = 0; r < ranges; ++r)
-    for (std::uint32_t k = begin[r]; k < end[r]; ++k) {
-      *w = sorted_[k];
-      w += are_neighbours_squared((xi - candidates_[k].x).squaredNorm(), hi2, candidates_[k].h2);
+  if (out.size() < used + candidates + 1) out.resize(std::max(2 * out.size(), used + candidates + 1));
+  std::array<Pair, D> xi2;
+  for (int d = 0; d < D; ++d) xi2[d] = Pair{xi[d], xi[d]};
+  const Pair hi2_2{hi2, hi2};
+  // Candidates k and k + 1: |x_i − x_k|² summed as Eigen's squaredNorm sums it, and
+  // r² <= max(h_i², h_k²) tested as (r² <= h_i²) | (r² <= h_k²), so the lists are those of the
+  // scalar test. A lane that is a neighbour is -1.
+  auto test_pair = [&](std::size_t k) {
+    Pair dx = xi2[0] - load_pair(cx_[0].data() + k);
+    Pair r2 = dx * dx;
+    for (int d = 1; d < D; ++d) {
+      dx = xi2[d] - load_pair(cx_[d].data() + k);
+      r2 += dx * dx;
     }
-  out.resize(static_cast<std::size_t>(w - out.data()));
+    return PairMask((r2 <= hi2_2) | (r2 <= load_pair(ch2_.data() + k)));
+  };
+  std::uint32_t* list = out.data();
+  for (std::size_t r = 0; r < ranges; ++r) {
+    std::size_t k = begin[r];
+    for (; k + 1 < end[r]; k += 2) {
+      const PairMask near = test_pair(k);
+      list[used] = sorted_[k];
+      used -= near[0];
+      list[used] = sorted_[k + 1];
+      used -= near[1];
+    }
+    if (k < end[r]) {  // an odd range's last candidate (the pair's second lane reads the next one)
+      list[used] = sorted_[k];
+      used -= test_pair(k)[0];
+    }
+  }
+  return used;
 }
 
 template <int D>
 const std::vector<std::size_t>& NeighbourGrid<D>::storage_order() {
   storage_order_.clear();
-  for (const std::uint32_t i : sorted_)
+  const std::span<const std::uint32_t> sorted(sorted_.data(), std::max<std::size_t>(sorted_.size(), 1) - 1);  // no padding
+  for (const std::uint32_t i : sorted)
     if (!inert_[i]) storage_order_.push_back(i);
-  for (const std::uint32_t i : sorted_)
+  for (const std::uint32_t i : sorted)
     if (inert_[i]) storage_order_.push_back(i);
   return storage_order_;
 }
@@ -182,27 +262,28 @@ void NeighbourGrid<D>::find_pairs(const ParticleSet<D>& ps) {
   }
   const auto chunks = static_cast<std::int64_t>((n + kChunk - 1) / kChunk);
   chunk_lists_.resize(chunks);
+  chunk_used_.resize(chunks);
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
-    std::vector<std::uint32_t>& out = chunk_lists_[c];
-    out.clear();
+    std::size_t used = 0;
     const std::size_t end = std::min(n, (c + 1) * kChunk);
     for (std::size_t i = c * kChunk; i < end; ++i) {
-      append_neighbours(ps, i, out);
-      offset_[i + 1] = out.size();
+      used = append_neighbours(ps, i, chunk_lists_[c], used);
+      offset_[i + 1] = used;
     }
+    chunk_used_[c] = used;
   }
   // Per-chunk end positions -> global offsets.
-  std::size_t base = 0;
+  chunk_base_.resize(chunks + 1);
+  chunk_base_[0] = 0;
+  for (std::int64_t c = 0; c < chunks; ++c) chunk_base_[c + 1] = chunk_base_[c] + chunk_used_[c];
+  index_.resize(chunk_base_[chunks]);  // every entry is overwritten below
+#pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::size_t end = std::min(n, (c + 1) * kChunk);
-    for (std::size_t i = c * kChunk; i < end; ++i) offset_[i + 1] += base;
-    base = offset_[end];
+    for (std::size_t i = c * kChunk; i < end; ++i) offset_[i + 1] += chunk_base_[c];
+    std::copy_n(chunk_lists_[c].begin(), chunk_used_[c], index_.begin() + chunk_base_[c]);
   }
-  index_.resize(base);  // every entry is overwritten below
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::int64_t c = 0; c < chunks; ++c)
-    std::copy(chunk_lists_[c].begin(), chunk_lists_[c].end(), index_.begin() + offset_[c * kChunk]);
 }
 
 template <int D>

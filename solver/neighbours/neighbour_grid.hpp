@@ -45,23 +45,27 @@ class NeighbourGrid {
   const std::vector<std::size_t>& storage_order();
 
  private:
-  void append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out) const;
+  std::size_t append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out,
+                                std::size_t used) const;
+  void sort_by_slot(const ParticleSet<D>& ps);
   void mark_cells_near_moving(std::int64_t cells);
 
   std::vector<std::size_t> offset_;
   std::vector<std::uint32_t> index_;
   std::vector<std::vector<std::uint32_t>> chunk_lists_;  // per chunk of particles, joined into index_
-  // A candidate of the pair search: position and squared support, packed for the scan's one pass.
-  struct Candidate {
-    Vec<D> x;
-    double h2;
-  };
-  std::vector<std::uint32_t> sorted_;     // particle indices ordered by (cell, inert, index)
+  std::vector<std::size_t> chunk_used_, chunk_base_;     // per chunk: entries used, start in index_
+  // Particle indices ordered by (cell, inert, index), and one padding entry that the pair scan,
+  // which tests candidates two at a time, may read but never lists.
+  std::vector<std::uint32_t> sorted_;
   std::vector<std::uint32_t> slot_start_; // start in sorted_ of slot 2c (non-inert of cell c) and 2c + 1 (inert)
   std::vector<std::uint64_t> slot_of_;    // slot of each particle
   std::vector<std::uint8_t> inert_;
   std::vector<std::uint8_t> near_moving_, spread_;  // per cell: a non-inert particle in the 3^D block (bin)
-  std::vector<Candidate, Eigen::aligned_allocator<Candidate>> candidates_;  // in sorted_ order
+  // Candidates of the pair search in sorted_ order (with its padding), one array per coordinate
+  // and one of squared supports, so that the distance test runs on two candidates at once.
+  std::array<std::vector<double>, D> cx_;
+  std::vector<double> ch2_;
+  std::vector<std::uint32_t> block_count_;  // per block of particles and slot: counts, then fill positions (bin)
   std::array<std::int64_t, D> dims_{};
   Vec<D> lo_;
   double cell_ = 0.0;

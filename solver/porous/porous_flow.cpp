@@ -28,19 +28,23 @@ double spacing_of(const ParticleSet<D>& ps, std::size_t i, const PorousParams& p
 
 /// Porous particles and water particles with a porous neighbour take part; porous particles with
 /// a water neighbour closer than kContactDistance spacings are in contact with free water (the
-/// body's surface row, not the row under it).
+/// body's surface row, not the row under it). Other particles (non-porous walls and sand) have
+/// neither mark and skip the scan.
 template <int D>
 void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     w.porous[i] = porous_at(ps, i);
-    const bool water = ps.phase_of(i) == Phase::Water;
+    const auto list = nb.of(i);
     bool near = false, touches = false;
-    for (const auto j : nb.of(i)) {
-      near = near || (water && porous_at(ps, j));
-      touches = touches || (!water && ps.phase_of(j) == Phase::Water &&
-                            (ps.x[j] - ps.x[i]).norm() < kContactDistance * spacing_of(ps, i, p));
+    if (ps.phase_of(i) == Phase::Water) {
+      near = std::any_of(list.begin(), list.end(), [&](std::uint32_t j) { return porous_at(ps, j); });
+    } else if (w.porous[i]) {
+      const double reach = kContactDistance * spacing_of(ps, i, p);
+      touches = std::any_of(list.begin(), list.end(), [&](std::uint32_t j) {
+        return ps.phase_of(j) == Phase::Water && (ps.x[j] - ps.x[i]).norm() < reach;
+      });
     }
     w.part[i] = w.porous[i] || near;
     w.contact[i] = w.porous[i] && touches;
@@ -132,11 +136,12 @@ void fill_slots(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, doub
 template <int D>
 void set_contact_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
                           const PorousWork<D>& w) {
+  const auto n = static_cast<std::int64_t>(ps.size());
   bool any = false;
-  for (std::size_t i = 0; i < ps.size() && !any; ++i) any = w.contact[i] && ps.phase_of(i) == Phase::Boundary;
+#pragma omp parallel for schedule(static) reduction(|| : any)
+  for (std::int64_t i = 0; i < n; ++i) any = any || (w.contact[i] && ps.phase_of(i) == Phase::Boundary);
   if (!any) return;
   const std::vector<double> column = water_column_pressure(ps, p.spacing, p.water_mass, p.fluid_density, g.norm());
-  const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i)
     if (w.contact[i] && ps.phase_of(i) == Phase::Boundary)
@@ -287,7 +292,9 @@ template <int D>
 void update_rigid_pore_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
                                 PorousWork<D>& w) {
   pressure_roles(ps, w);
-  for (std::size_t i = 0; i < ps.size(); ++i)
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
     if (w.role[i] == PressureRole::Prescribed && ps.phase_of(i) == Phase::Boundary && !w.contact[i])
       ps.pore_pressure[i] = 0.0;
   solve_harmonic_pressure(ps, nb, w.role, p.fluid_density, g, ps.pore_pressure);
