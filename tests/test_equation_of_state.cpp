@@ -1,4 +1,7 @@
 // Equations of state: linear (unnumbered, under eq 6) and Tait [thesis eq. 7].
+#include <algorithm>
+#include <cmath>
+
 #include <boost/test/unit_test.hpp>
 
 #include "sph/equation_of_state.hpp"
@@ -35,6 +38,23 @@ BOOST_AUTO_TEST_CASE(inverse_and_clamping) {
     eos.clamp_negative = true;
     BOOST_TEST(eos.pressure(990.0, 1000.0) == 0.0);
   }
+}
+
+BOOST_AUTO_TEST_CASE(shortcuts_without_pow_have_the_bits_of_the_full_laws) {
+  // pressure() returns +0 at or below rest density with the clamp, density() returns rho0 at p = 0:
+  // the same bits as evaluating the laws with std::pow.
+  EquationOfState eos;
+  eos.sound_speed = 10.0;
+  const double rho0 = 1000.0, c2 = eos.sound_speed * eos.sound_speed;
+  for (const double rho : {0.0, 500.0, 999.9999999, 1000.0}) {
+    const double full = std::max(0.0, tait_pressure(rho, rho0, rho0 * c2 / eos.gamma, eos.gamma));
+    const double p = eos.pressure(rho, rho0);
+    BOOST_TEST(p == full);
+    BOOST_TEST(!std::signbit(p));
+  }
+  BOOST_TEST(eos.density(0.0, rho0) == rho0 * std::pow(1.0 + 0.0 * eos.gamma / (rho0 * c2), 1.0 / eos.gamma));
+  eos.kind = EquationOfState::Kind::Linear;
+  BOOST_TEST(eos.density(0.0, rho0) == rho0 * std::max(1e-12, 1.0 + 0.0 / (rho0 * c2)));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -95,20 +95,25 @@ BOOST_AUTO_TEST_CASE(gradient_is_antisymmetric_and_points_towards_neighbour) {
 
 BOOST_AUTO_TEST_CASE(pair_average_of_equal_supports_has_the_bits_of_the_full_average) {
   // The one-evaluation path for h_i = h_j must give exactly (k(h_i) + k(h_j))/2, and the average is
-  // symmetric in i and j for unequal supports.
+  // symmetric in i and j for unequal supports. The kernels at a Support (constants looked up once)
+  // have the bits of the kernels at h.
   const Vec<3> d(0.013, -0.021, 0.007);
   const double r = d.norm();
-  auto grad = [&](double h) { return kernel::spiky_gradient<3>(d, r, h); };
+  auto grad = [&](const kernel::Support<3>& s) { return kernel::spiky_gradient<3>(d, r, s); };
   for (const double h : {0.03, 0.0417, 0.06}) {
-    const Vec<3> full = 0.5 * (grad(h) + grad(h));
-    const Vec<3> avg = kernel::pair_average(grad, h, h);
+    const kernel::Support<3> s(h);
+    const Vec<3> full = 0.5 * (kernel::spiky_gradient<3>(d, r, h) + kernel::spiky_gradient<3>(d, r, h));
+    const Vec<3> avg = kernel::pair_average(grad, s, h);
     BOOST_TEST((avg.array() == full.array()).all());
-    const double lap = kernel::pair_average([r](double s) { return kernel::viscosity_laplacian<3>(r, s); }, h, h);
+    const double lap = kernel::pair_average([r](const kernel::Support<3>& t) { return kernel::viscosity_laplacian<3>(r, t); }, s, h);
     BOOST_TEST(lap == 0.5 * (kernel::viscosity_laplacian<3>(r, h) + kernel::viscosity_laplacian<3>(r, h)));
+    BOOST_TEST(kernel::poly6<3>(r, s) == kernel::poly6<3>(r, h));
+    BOOST_TEST(kernel::spiky<3>(r, s) == kernel::spiky<3>(r, h));
   }
-  const Vec<3> ij = kernel::pair_average(grad, 0.03, 0.05), ji = kernel::pair_average(grad, 0.05, 0.03);
+  const kernel::Support<3> a(0.03), b(0.05);
+  const Vec<3> ij = kernel::pair_average(grad, a, 0.05), ji = kernel::pair_average(grad, b, 0.03);
   BOOST_TEST((ij.array() == ji.array()).all());
-  BOOST_TEST((ij - 0.5 * (grad(0.03) + grad(0.05))).norm() == 0.0);
+  BOOST_TEST((ij - 0.5 * (grad(a) + grad(b))).norm() == 0.0);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -16,11 +16,11 @@ namespace sc {
 /// compression-positive: plugged in literally friction does positive work. The linearised form
 /// (J = I) is used. The pair term is antisymmetric (f_ji = −f_ij), and with G_i of eq 9′ the total
 /// power is Σ_i f_i·v_i = −Σ_i V_i Σ_i : D_i = −Σ_i V_i √3 sin φ p_i |D_i|_F ≤ 0.
-/// `d` is x_i − x_j; Si, Sj are the tension-positive stresses Σ_i, Σ_j.
+/// `d` is x_i − x_j; Si, Sj are the tension-positive stresses Σ_i, Σ_j; si, sj the supports.
 template <int D>
 inline Vec<D> frictional_pair_force(double Vi, double Vj, const Mat<D>& Si, const Mat<D>& Sj, const Vec<D>& d,
-                                    double r, double hi, double hj) {
-  return -Vj * (Sj * d_ij<D>(Vi, Vec<D>(-d), r, hi)) + Vi * (Si * d_ij<D>(Vj, d, r, hj));
+                                    double r, const kernel::Support<D>& si, const kernel::Support<D>& sj) {
+  return -Vj * (Sj * d_ij<D>(Vi, Vec<D>(-d), r, si)) + Vi * (Si * d_ij<D>(Vj, d, r, sj));
 }
 
 }  // namespace sc

@@ -25,10 +25,11 @@ double rigid_length(const ParticleSet<D>& ps, std::size_t i, const SandParams& s
 
 /// Contact force on i from j (contact_force). The law (a wall particle counts as infinitely heavy)
 /// is built only for a pair that overlaps: any other pair gets zero from contact_force anyway.
+/// `spacing_i`: rest_spacing of i, computed once per particle.
 template <int D>
-Vec<D> pair_contact_force(const ParticleSet<D>& ps, std::size_t i, std::size_t j, const Vec<D>& d, double r,
-                          const SandParams& sand, double sound_speed, double dt) {
-  const double s = 0.5 * (rest_spacing<D>(ps.m[i], ps.rho0[i]) + rest_spacing<D>(ps.m[j], ps.rho0[j]));
+Vec<D> pair_contact_force(const ParticleSet<D>& ps, std::size_t i, double spacing_i, std::size_t j, const Vec<D>& d,
+                          double r, const SandParams& sand, double sound_speed, double dt) {
+  const double s = 0.5 * (spacing_i + rest_spacing<D>(ps.m[j], ps.rho0[j]));
   if (!(r < s)) return Vec<D>::Zero();
   const double mj = ps.moves(j) ? ps.m[j] : 0.0;
   const ContactLaw law = contact_law(ps.m[i], mj, s, sound_speed, sand.contact_damping,
@@ -76,23 +77,25 @@ void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandP
   for (std::int64_t i = 0; i < n; ++i) {
     wall_force[i].setZero();
     if (!is_sand(ps.phase[i])) continue;
-    const double Vi = ps.volume(i);
+    const double Vi = ps.volume(i), Pi = ps.p[i], spacing_i = rest_spacing<D>(ps.m[i], ps.rho0[i]);
+    const Vec<D> xi = ps.x[i], vi = ps.v[i];
+    const kernel::Support<D> si(ps.h[i]);
     Vec<D> f = Vec<D>::Zero(), wall = Vec<D>::Zero();
     for (const auto j : nb.of(i)) {
       if (j == static_cast<std::size_t>(i)) continue;
-      const Vec<D> d = ps.x[i] - ps.x[j];
+      const Vec<D> d = xi - ps.x[j];
       const double r = d.norm();
       const double Vj = ps.volume(j);
-      const Vec<D> fp0 = pressure_pair_force<D>(Vi, Vj, ps.p[i], ps.p[j], d, r, ps.h[i], ps.h[j], water.mueller_half_pressure);
-      const Vec<D> fp = corrected ? Vec<D>(0.5 * (correction[i] + correction[j]) * fp0) : fp0;
+      const Vec<D> fp0 = pressure_pair_force<D>(Vi, Vj, Pi, ps.p[j], d, r, si, ps.h[j], water.mueller_half_pressure);
+      const Vec<D> fp = corrected ? corrected_pair_term<D>(correction[i], correction[j], fp0) : fp0;
       f += fp;
       if (is_sand(ps.phase[j])) {
-        if (sand.viscosity > 0.0) f += viscosity_pair_force<D>(sand.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
+        if (sand.viscosity > 0.0) f += viscosity_pair_force<D>(sand.viscosity, Vi, Vj, vi, ps.v[j], r, si, ps.h[j]);
         continue;
       }
-      const Vec<D> fc = pair_contact_force(ps, i, j, d, r, sand, sound_speed, dt);
+      const Vec<D> fc = pair_contact_force(ps, i, spacing_i, j, d, r, sand, sound_speed, dt);
       f += fc;
-      if (ps.moves(j)) f += viscosity_pair_force<D>(water.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
+      if (ps.moves(j)) f += viscosity_pair_force<D>(water.viscosity, Vi, Vj, vi, ps.v[j], r, si, ps.h[j]);
       else if (ps.rough[j]) wall += fp + fc;
     }
     ps.force[i] += f;
@@ -111,12 +114,16 @@ void add_frictional_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const
   for (std::int64_t i = 0; i < n; ++i) {
     if (!is_sand(ps.phase[i])) continue;
     const bool unstressed = stress[i].isZero(0.0);
+    const double Vi = ps.volume(i);
+    const Vec<D> xi = ps.x[i];
+    const kernel::Support<D> si(ps.h[i]);
     Vec<D> f = Vec<D>::Zero();
     for (const auto j : nb.of(i)) {
       if (j == static_cast<std::size_t>(i) || !is_sand(ps.phase[j]) || (unstressed && stress[j].isZero(0.0))) continue;
-      const Vec<D> d = ps.x[i] - ps.x[j];
-      const Vec<D> fp = frictional_pair_force<D>(ps.volume(i), ps.volume(j), stress[i], stress[j], d, d.norm(), ps.h[i], ps.h[j]);
-      f += corrected ? Vec<D>(0.5 * (correction[i] + correction[j]) * fp) : fp;
+      const Vec<D> d = xi - ps.x[j];
+      const Vec<D> fp = frictional_pair_force<D>(Vi, ps.volume(j), stress[i], stress[j], d, d.norm(), si,
+                                                 kernel::support_of<D>(ps.h[j], si));
+      f += corrected ? corrected_pair_term<D>(correction[i], correction[j], fp) : fp;
     }
     ps.force[i] += f;
   }
@@ -129,11 +136,12 @@ void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, cons
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (ps.phase_of(i) != Phase::Water) continue;
+    const double spacing_i = rest_spacing<D>(ps.m[i], ps.rho0[i]);
     Vec<D> f = Vec<D>::Zero();
     for (const auto j : nb.of(i)) {
       if (!is_sand(ps.phase[j])) continue;
       const Vec<D> d = ps.x[i] - ps.x[j];
-      f += pair_contact_force(ps, i, j, d, d.norm(), sand, sound_speed, dt);
+      f += pair_contact_force(ps, i, spacing_i, j, d, d.norm(), sand, sound_speed, dt);
     }
     ps.force[i] += f;
   }
@@ -146,11 +154,12 @@ void add_partial_water_wall_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& 
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!is_partial_water(ps, i, full_water_mass)) continue;
+    const double spacing_i = rest_spacing<D>(ps.m[i], ps.rho0[i]);
     Vec<D> f = Vec<D>::Zero();
     for (const auto j : nb.of(i)) {
       if (ps.phase_of(j) != Phase::Boundary || ps.porosity[j] != 0.0) continue;
       const Vec<D> d = ps.x[i] - ps.x[j];
-      f += pair_contact_force(ps, i, j, d, d.norm(), sand, sound_speed, dt);
+      f += pair_contact_force(ps, i, spacing_i, j, d, d.norm(), sand, sound_speed, dt);
     }
     ps.force[i] += f;
   }

@@ -12,8 +12,8 @@ namespace sc {
 /// (erratum 20: evaluating a gradient function literally at x_j − x_i flips the sign).
 /// `d` is x_i − x_j. Spiky kernel gradient.
 template <int D>
-inline Vec<D> d_ij(double Vj, const Vec<D>& d, double r, double hj) {
-  return Vj * kernel::spiky_gradient<D>(d, r, hj);
+inline Vec<D> d_ij(double Vj, const Vec<D>& d, double r, const kernel::Support<D>& sj) {
+  return Vj * kernel::spiky_gradient<D>(d, r, sj);
 }
 
 /// Velocity gradient [thesis eq. 9] (corrected form 9′ of EQUATIONS.md):
@@ -27,10 +27,12 @@ Mat<D> velocity_gradient(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, s
                          const VecArrayOf<D>* velocities = nullptr) {
   const VecArrayOf<D>& v = velocities ? *velocities : ps.v;
   Mat<D> G = Mat<D>::Zero();
+  const Vec<D> xi = ps.x[i], vi = v[i];
+  const kernel::Support<D> si(ps.h[i]);
   for (const auto j : nb.of(i)) {
     if (j == i || ps.phase_of(j) != Phase::Sand) continue;
-    const Vec<D> d = ps.x[i] - ps.x[j];
-    G += (v[j] - v[i]) * d_ij<D>(ps.volume(j), d, d.norm(), ps.h[j]).transpose();
+    const Vec<D> d = xi - ps.x[j];
+    G += (v[j] - vi) * d_ij<D>(ps.volume(j), d, d.norm(), kernel::support_of<D>(ps.h[j], si)).transpose();
   }
   return G;
 }

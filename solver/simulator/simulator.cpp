@@ -112,7 +112,9 @@ void Simulator<D>::compute_forces() {
   {
     auto t = timers_.time(Stage::Density);
     const auto n = static_cast<std::int64_t>(ps_.size());
-#pragma omp parallel for schedule(static)
+    // Dynamic: the moving particles, the only ones with work, are stored first (a static split gave
+    // them all to the first thread).
+#pragma omp parallel for schedule(dynamic, 256)
     for (std::int64_t i = 0; i < n; ++i)
       if (ps_.moves(i)) ps_.p[i] = params_.eos.pressure(ps_.rho[i], ps_.rho0[i]);
     if (partial_water_mass() > 0.0) set_partial_water_pressure(ps_, nb_, partial_water_mass());

@@ -52,8 +52,10 @@ template <int D>
 double density_sum(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i, kernel::DensityKernel k,
                    double water_rest_density) {
   double rho = 0.0;
+  const Vec<D> xi = ps.x[i];
+  const kernel::Support<D> si(ps.h[i]);
   for (const auto j : nb.of(i))
-    rho += neighbour_mass(ps, i, j, water_rest_density) * kernel::density_kernel<D>(k, (ps.x[i] - ps.x[j]).norm(), ps.h[i]);
+    rho += neighbour_mass(ps, i, j, water_rest_density) * kernel::density_kernel<D>(k, (xi - ps.x[j]).norm(), si);
   return rho;
 }
 

@@ -30,15 +30,20 @@ struct EquationOfState {
   double gamma = 7.0;         ///< Tait exponent [-]
   bool clamp_negative = true;
 
-  /// Pressure [Pa] at density rho for a particle of rest density rho0.
+  /// Pressure [Pa] at density rho for a particle of rest density rho0. With the clamp, a particle
+  /// at or below its rest density gets 0 without std::pow (both laws give p <= 0 there, clamped to
+  /// +0, so the bits are the same; a NaN density gives 0 either way).
   double pressure(double rho, double rho0) const {
+    if (clamp_negative && !(rho > rho0)) return 0.0;
     const double c2 = sound_speed * sound_speed;
     const double p = kind == Kind::Tait ? tait_pressure(rho, rho0, rho0 * c2 / gamma, gamma)
                                         : linear_pressure(rho, rho0, rho0 * c2);
     return clamp_negative ? std::max(0.0, p) : p;
   }
-  /// Inverse: the density at which the pressure is p (used for wall particles).
+  /// Inverse: the density at which the pressure is p (used for wall particles). p = 0 (most wall
+  /// particles, far from the fluid) gives rho0 without std::pow: pow(1, 1/γ) is exactly 1.
   double density(double p, double rho0) const {
+    if (p == 0.0) return rho0;
     const double c2 = sound_speed * sound_speed;
     if (kind == Kind::Tait) return rho0 * std::pow(std::max(1e-12, 1.0 + p * gamma / (rho0 * c2)), 1.0 / gamma);
     return rho0 * std::max(1e-12, 1.0 + p / (rho0 * c2));

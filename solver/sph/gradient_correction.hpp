@@ -39,16 +39,26 @@ template <int D>
 Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i,
                            double none = 0.5, double full = 0.8) {
   Mat<D> M = Mat<D>::Zero();
+  const Vec<D> xi = ps.x[i];
+  const kernel::Support<D> si(ps.h[i]);
   for (const auto j : nb.of(i)) {
     if (j == i) continue;
-    const Vec<D> d = ps.x[i] - ps.x[j];
+    const Vec<D> d = xi - ps.x[j];
     const double r = d.norm();
-    const Vec<D> grad = kernel::pair_average([&](double h) { return kernel::spiky_gradient<D>(d, r, h); }, ps.h[i], ps.h[j]);
+    const Vec<D> grad = kernel::pair_average([&](const kernel::Support<D>& s) { return kernel::spiky_gradient<D>(d, r, s); }, si, ps.h[j]);
     M += ps.volume(j) * grad * (-d).transpose();
   }
   const double w = correction_weight(Mat<D>(0.5 * (M + M.transpose())), none, full);
   if (w == 0.0) return Mat<D>::Identity();
   return (1.0 - w) * Mat<D>::Identity() + w * M.inverse();
+}
+
+/// A pair term t (a force built from ∇W_ij) corrected symmetrically, ½(L_i + L_j) t, evaluated as
+/// ½((L_i + L_j) t): halving is exact in binary floating point (barring subnormals), so both orders
+/// give the same bits, and this one multiplies D values by ½ instead of D².
+template <int D>
+inline Vec<D> corrected_pair_term(const Mat<D>& Li, const Mat<D>& Lj, const Vec<D>& t) {
+  return 0.5 * ((Li + Lj) * t);
 }
 
 template <int D>

@@ -17,11 +17,11 @@ namespace sc {
 /// P_j/ρ_j²) at equal densities). Müller 2003's average (P_i + P_j)/2 gives only ∇P/2: a column at
 /// rest then carries twice the hydrostatic pressure (measured: 2.3x before this choice). The unit
 /// test "pressure_force_reproduces_linear_gradient" pins this. `mueller_half` = true selects
-/// Müller's halved form (documented switch, for comparison only).
+/// Müller's halved form (documented switch, for comparison only). `si`: the support h_i.
 template <int D>
 inline Vec<D> pressure_pair_force(double Vi, double Vj, double Pi, double Pj, const Vec<D>& d, double r,
-                                  double hi, double hj, bool mueller_half = false) {
-  const Vec<D> grad = kernel::pair_average([&](double h) { return kernel::spiky_gradient<D>(d, r, h); }, hi, hj);
+                                  const kernel::Support<D>& si, double hj, bool mueller_half = false) {
+  const Vec<D> grad = kernel::pair_average([&](const kernel::Support<D>& s) { return kernel::spiky_gradient<D>(d, r, s); }, si, hj);
   const double pressure = mueller_half ? 0.5 * (Pi + Pj) : (Pi + Pj);
   return (-Vi * Vj * pressure) * grad;
 }

@@ -9,10 +9,12 @@ namespace sc {
 /// antisymmetric only for equal masses; adaptive sampling breaks that, so this uses the symmetric
 /// variant f_ij = −κ' m_i m_j (x_i − x_j) W_poly6(|x_ij|, h̄), h̄ = (h_i + h_j)/2, κ' = κ/m_ref,
 /// which equals Becker & Teschner for uniform mass m_ref (EQUATIONS.md, "Surface tension").
+/// `si`: the support h_i (h̄ = h_i exactly when h_j = h_i).
 template <int D>
 inline Vec<D> surface_tension_pair_force(double kappa_prime, double mi, double mj, const Vec<D>& d, double r,
-                                         double hi, double hj) {
-  return (-kappa_prime * mi * mj * kernel::poly6<D>(r, 0.5 * (hi + hj))) * d;
+                                         const kernel::Support<D>& si, double hj) {
+  const double W = si.h == hj ? kernel::poly6<D>(r, si) : kernel::poly6<D>(r, 0.5 * (si.h + hj));
+  return (-kappa_prime * mi * mj * W) * d;
 }
 
 }  // namespace sc

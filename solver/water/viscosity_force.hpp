@@ -8,10 +8,11 @@ namespace sc {
 ///   f_ij = μ V_i V_j (v_j − v_i) (∇²W_visc(r, h_i) + ∇²W_visc(r, h_j))/2.
 /// Correct as printed; symmetric in i and j, so f_ji = −f_ij, and it only damps relative motion.
 /// μ [Pa s] is the SPH (artificial) viscosity of the case, not necessarily water's 1e-3 Pa s.
+/// `si`: the support h_i.
 template <int D>
 inline Vec<D> viscosity_pair_force(double mu, double Vi, double Vj, const Vec<D>& vi, const Vec<D>& vj,
-                                   double r, double hi, double hj) {
-  const double lap = kernel::pair_average([r](double h) { return kernel::viscosity_laplacian<D>(r, h); }, hi, hj);
+                                   double r, const kernel::Support<D>& si, double hj) {
+  const double lap = kernel::pair_average([r](const kernel::Support<D>& s) { return kernel::viscosity_laplacian<D>(r, s); }, si, hj);
   return (mu * Vi * Vj * lap) * (vj - vi);
 }
 

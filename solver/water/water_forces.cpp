@@ -16,20 +16,22 @@ void add_water_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Wate
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (ps.phase_of(i) != Phase::Water) continue;
-    const double Vi = ps.volume(i);
+    const double Vi = ps.volume(i), Pi = ps.p[i], mi = ps.m[i];
+    const Vec<D> xi = ps.x[i], vi = ps.v[i];
+    const kernel::Support<D> si(ps.h[i]);
     Vec<D> f = Vec<D>::Zero();
     for (const auto j : nb.of(i)) {
       if (j == static_cast<std::size_t>(i)) continue;
-      const Vec<D> d = ps.x[i] - ps.x[j];
+      const Vec<D> d = xi - ps.x[j];
       const double r = d.norm();
       const double Vj = ps.volume(j);
-      const Vec<D> fp = pressure_pair_force<D>(Vi, Vj, ps.p[i], ps.p[j], d, r, ps.h[i], ps.h[j], params.mueller_half_pressure);
-      f += corrected ? Vec<D>(0.5 * (correction[i] + correction[j]) * fp) : fp;
+      const Vec<D> fp = pressure_pair_force<D>(Vi, Vj, Pi, ps.p[j], d, r, si, ps.h[j], params.mueller_half_pressure);
+      f += corrected ? corrected_pair_term<D>(correction[i], correction[j], fp) : fp;
       const bool boundary = ps.phase_of(j) == Phase::Boundary;
       if (!boundary || ps.rough[j])
-        f += viscosity_pair_force<D>(params.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, ps.h[i], ps.h[j]);
+        f += viscosity_pair_force<D>(params.viscosity, Vi, Vj, vi, ps.v[j], r, si, ps.h[j]);
       if (!boundary && kappa_prime != 0.0)
-        f += surface_tension_pair_force<D>(kappa_prime, ps.m[i], ps.m[j], d, r, ps.h[i], ps.h[j]);
+        f += surface_tension_pair_force<D>(kappa_prime, mi, ps.m[j], d, r, si, ps.h[j]);
     }
     ps.force[i] += f;
   }
