@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <omp.h>
 #include <type_traits>
 #include <string>
 
@@ -104,18 +105,31 @@ void ParticleSet<D>::copy_from(const ParticleSet& other) {
 
 template <int D>
 void ParticleSet<D>::refresh_from(const ParticleSet& other) {
-  const auto n = static_cast<std::int64_t>(other.size());
-  std::vector<std::uint8_t> full(other.size());  // particles to copy in full
+  const std::size_t n = other.size();
 #pragma omp parallel
   {
-#pragma omp for schedule(static)
-    for (std::int64_t k = 0; k < n; ++k) full[k] = !(inert(k) && other.inert(k));
-    visit_fields_with(other, [&full, &other, n](auto& field, const auto& src) {
+    // This thread's share of the particles and, in it, the runs of particles to copy in full
+    // (not inert in both sets); block copies, no barrier between the fields.
+    const auto threads = static_cast<std::size_t>(omp_get_num_threads());
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const std::size_t lo = n * t / threads, hi = n * (t + 1) / threads;
+    std::vector<std::pair<std::size_t, std::size_t>> runs;
+    for (std::size_t k = lo; k < hi;) {
+      const auto full = [&](std::size_t i) { return !(inert(i) && other.inert(i)); };
+      if (!full(k)) {
+        ++k;
+        continue;
+      }
+      const std::size_t begin = k;
+      while (k < hi && full(k)) ++k;
+      runs.emplace_back(begin, k);
+    }
+    visit_fields_with(other, [&](auto& field, const auto& src) {
       const void* f = &src;
-      const bool changes_at_walls = f == &other.rho || f == &other.p || f == &other.density_offset;
-#pragma omp for schedule(static) nowait
-      for (std::int64_t k = 0; k < n; ++k)
-        if (changes_at_walls || full[k]) field[k] = src[k];
+      if (f == &other.rho || f == &other.p || f == &other.density_offset)  // change at the walls too
+        std::copy(src.begin() + lo, src.begin() + hi, field.begin() + lo);
+      else
+        for (const auto& [begin, end] : runs) std::copy(src.begin() + begin, src.begin() + end, field.begin() + begin);
     });
   }
   remove_flag_ = other.remove_flag_;
