@@ -57,8 +57,8 @@ void set_partial_water_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, 
 /// lacks most of the self term, and among sand or at the free surface it has few water neighbours:
 /// measured in thesis_bunny_armadillos (t = 1.2-1.26 s), parcels of 0.3-4 % of m0 next to the
 /// bunny's foot read ρ_i = 2-130 kg/m^3, so V_i was up to a full particle's volume for a few percent
-/// of its mass; the pressure of the sand and of the water around them gave 2,000-20,000 m/s² (with
-/// this density 40-500 m/s²) and threw them off at 8-27 m/s. Call after the pressures are set (a
+/// of its mass; the pressure of the sand and of the water around them gave 2,000-20,000 m/s² (10 to
+/// 500 times what this density gives) and threw them off at 8-27 m/s. Call after the pressures are set (a
 /// parcel without full neighbours keeps the state-equation pressure of its own ρ_i/ρ0_i).
 template <int D>
 void set_partial_water_density(ParticleSet<D>& ps, double full_mass, double fluid_density) {
