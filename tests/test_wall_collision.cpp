@@ -86,6 +86,19 @@ BOOST_AUTO_TEST_CASE(particle_created_inside_the_floor_layers_is_put_on_the_floo
   BOOST_TEST(ps.v[0].norm() == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(particle_created_inside_the_floor_layers_and_driven_through_them_is_put_on_the_floor) {
+  // thesis_bunny_armadillos, step 1271: water emitted 8.1 mm deep into the floor's 20 mm layers got
+  // −14,000 m/s² from the wall and the sand above in its first step and ended 21.9 mm deep, behind
+  // the layers; it is put on the floor all the same, not left to fall out of the domain.
+  const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
+  ParticleSet<2>::VecArray start;
+  ParticleSet<2> ps = moved_particle(Vec<2>(0.23, -0.0081), Vec<2>(0.4, -13.8), 0.001, start);
+  BOOST_TEST(ps.x[0][1] < -0.02);
+  BOOST_TEST(collide_with_tank(ps, walls, start) == 1);
+  BOOST_TEST((ps.x[0] - Vec<2>(0.2304, 0.0)).norm() <= 1e-15);
+  BOOST_TEST(ps.v[0].norm() == 0.0);
+}
+
 BOOST_AUTO_TEST_CASE(particle_over_the_rim_of_an_open_tank_is_left_alone) {
   // The x+ wall ends at the rim y = 1 (the top is open): a splash above it crosses the plane freely,
   // and so does a particle already outside (it went over the rim earlier).

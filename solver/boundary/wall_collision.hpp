@@ -53,8 +53,9 @@ Vec<D> wall_collision_velocity(const Vec<D>& v, const Vec<D>& n, bool no_slip) {
 }
 
 /// For every moving particle (water and sand) whose path from x_start[i] (its position before the
-/// step) to its new position crossed a closed side's plane from inside the tank, or that ends within
-/// the side's wall layers (a particle created there), at a point in front of that side's wall: the
+/// step) to its new position crossed a closed side's plane from inside the tank, or that started
+/// within the side's wall layers (a particle created there) and ends behind the plane, at a point in
+/// front of that side's wall: the
 /// particle is put on the plane and its velocity gets the side's collision rule
 /// (wall_collision_velocity). Sides are handled in order (x, y, z), so a particle driven into a
 /// corner ends in the corner. A particle that went over the rim of an open-top wall is left alone.

@@ -117,7 +117,10 @@ void Simulator<D>::compute_forces() {
 #pragma omp parallel for schedule(dynamic, 256)
     for (std::int64_t i = 0; i < n; ++i)
       if (ps_.moves(i)) ps_.p[i] = params_.eos.pressure(ps_.rho[i], ps_.rho0[i]);
-    if (partial_water_mass() > 0.0) set_partial_water_pressure(ps_, nb_, partial_water_mass());
+    if (partial_water_mass() > 0.0) {
+      set_partial_water_pressure(ps_, nb_, partial_water_mass());
+      set_partial_water_density(ps_, partial_water_mass(), params_.porous->fluid_density);
+    }
     extrapolate_wall_pressure(ps_, nb_, g_, params_.eos);
   }
   {
