@@ -53,9 +53,10 @@ Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
   return (1.0 - w) * Mat<D>::Identity() + w * M.inverse();
 }
 
-/// A pair term t (a force built from ∇W_ij) corrected symmetrically, ½(L_i + L_j) t, evaluated as
+/// A pair term t (a force built from ∇W_ij) corrected symmetrically, ½(L_i + L_j) t, written
 /// ½((L_i + L_j) t): halving is exact in binary floating point (barring subnormals), so both orders
-/// give the same bits, and this one multiplies D values by ½ instead of D².
+/// give the same bits (Eigen already pulls the scalar out of the product). Shared by the water,
+/// sand and frictional pair loops.
 template <int D>
 inline Vec<D> corrected_pair_term(const Mat<D>& Li, const Mat<D>& Lj, const Vec<D>& t) {
   return 0.5 * ((Li + Lj) * t);
