@@ -37,47 +37,89 @@ inline Pair load_pair(const double* p) {
 }  // namespace
 
 template <int D>
-void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
-  const std::size_t n = ps.size();
-  sorted_.resize(n + 1);
-  if (n == 0) return;
-  if (n >= UINT32_MAX) throw std::runtime_error("neighbour search: too many particles");
-
-  // Bounds and largest support: min and max are exact, so the result does not depend on the threads.
-  const auto count = static_cast<std::int64_t>(n);
+typename NeighbourGrid<D>::Bounds NeighbourGrid<D>::bounds(const ParticleSet<D>& ps, std::span<const std::uint32_t> which) {
   double hmax = 0.0, lo[D], hi[D];
-  for (int d = 0; d < D; ++d) lo[d] = hi[d] = ps.x[0][d];
+  std::fill(lo, lo + D, INFINITY);
+  std::fill(hi, hi + D, -INFINITY);
+  const auto count = static_cast<std::int64_t>(which.size());
 #pragma omp parallel for schedule(static) reduction(max : hmax, hi[:D]) reduction(min : lo[:D])
-  for (std::int64_t i = 0; i < count; ++i) {
+  for (std::int64_t k = 0; k < count; ++k) {
+    const std::uint32_t i = which[k];
     hmax = std::max(hmax, ps.h[i]);
     for (int d = 0; d < D; ++d) {
       lo[d] = std::min(lo[d], ps.x[i][d]);
       hi[d] = std::max(hi[d], ps.x[i][d]);
     }
   }
-  for (int d = 0; d < D; ++d) lo_[d] = lo[d];
+  Bounds b;
+  std::copy(lo, lo + D, b.lo.begin());
+  std::copy(hi, hi + D, b.hi.begin());
+  b.hmax = hmax;
+  return b;
+}
+
+template <int D>
+bool NeighbourGrid<D>::set_grid(const Bounds& moving, const Bounds& fixed) {
+  const double hmax = std::max(moving.hmax, fixed.hmax);
   if (!(hmax > 0.0)) throw std::logic_error("neighbour search: support radius must be positive");
-  cell_ = hmax;
+  Vec<D> lo;
+  std::array<std::int64_t, D> dims;
   std::int64_t cells = 1;
   for (int d = 0; d < D; ++d) {
-    dims_[d] = static_cast<std::int64_t>(std::floor((hi[d] - lo_[d]) / hmax)) + 1;
-    cells *= dims_[d];
+    lo[d] = std::min(moving.lo[d], fixed.lo[d]);
+    dims[d] = static_cast<std::int64_t>(std::floor((std::max(moving.hi[d], fixed.hi[d]) - lo[d]) / hmax)) + 1;
+    cells *= dims[d];
   }
   if (cells > 400'000'000) throw std::runtime_error("neighbour search: particles spread over too many cells");
+  const bool changed = hmax != cell_ || lo != lo_ || dims != dims_;
+  cell_ = hmax;
+  lo_ = lo;
+  dims_ = dims;
+  cells_ = cells;
+  return changed;
+}
 
+template <int D>
+std::uint64_t NeighbourGrid<D>::slot(const ParticleSet<D>& ps, std::size_t i) const {
+  std::int64_t c = 0;
+  for (int d = D - 1; d >= 0; --d)
+    c = c * dims_[d] + std::min<std::int64_t>(dims_[d] - 1, static_cast<std::int64_t>((ps.x[i][d] - lo_[d]) / cell_));
+  return 2 * static_cast<std::uint64_t>(c) + inert_[i];
+}
+
+template <int D>
+void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
+  const std::size_t n = ps.size();
+  sorted_.resize(n + 1);
+  layout_ = ps.layout();
   inert_.resize(n);
-  slot_of_.resize(n);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < count; ++i) {
-    std::int64_t c = 0;
-    for (int d = D - 1; d >= 0; --d)
-      c = c * dims_[d] + std::min<std::int64_t>(dims_[d] - 1, static_cast<std::int64_t>((ps.x[i][d] - lo_[d]) / hmax));
+  moving_.clear();
+  fixed_.clear();
+  if (n == 0) return;
+  if (n >= UINT32_MAX) throw std::runtime_error("neighbour search: too many particles");
+  for (std::size_t i = 0; i < n; ++i) {
     inert_[i] = ps.inert(i);
-    slot_of_[i] = 2 * static_cast<std::uint64_t>(c) + inert_[i];
+    (inert_[i] ? fixed_ : moving_).push_back(static_cast<std::uint32_t>(i));
   }
-  slot_start_.resize(2 * static_cast<std::size_t>(cells) + 2);
+  fixed_bounds_ = bounds(ps, fixed_);
+  set_grid(bounds(ps, moving_), fixed_bounds_);
+  slot_of_.resize(n);
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < count; ++i) slot_of_[i] = slot(ps, i);
   sort_by_slot(ps);
-  mark_cells_near_moving(cells);
+  mark_cells_near_moving();
+}
+
+template <int D>
+void NeighbourGrid<D>::bin_moving(const ParticleSet<D>& ps) {
+  if (ps.layout() != layout_ || ps.size() != inert_.size() || ps.size() == 0) return bin(ps);
+  if (set_grid(bounds(ps, moving_), fixed_bounds_)) return bin(ps);  // the walls' cells moved too
+  const auto count = static_cast<std::int64_t>(moving_.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < count; ++k) slot_of_[moving_[k]] = slot(ps, moving_[k]);
+  sort_by_slot(ps);
+  mark_cells_near_moving();
 }
 
 // Stable counting sort of the particles by slot (sorted_, cx_, ch2_, slot_start_). The particles
@@ -86,7 +128,8 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
 // blocks run in parallel and the result is the serial sort's whatever the threads.
 template <int D>
 void NeighbourGrid<D>::sort_by_slot(const ParticleSet<D>& ps) {
-  const std::size_t n = ps.size(), slots = slot_start_.size() - 2;
+  const std::size_t n = ps.size(), slots = 2 * static_cast<std::size_t>(cells_);
+  slot_start_.resize(slots + 2);
   // One block per thread, of at least kSortBlock particles; one block if the blocks' counts would
   // outweigh the particles by far.
   const auto threads = static_cast<std::size_t>(omp_get_max_threads());
@@ -132,19 +175,41 @@ void NeighbourGrid<D>::sort_by_slot(const ParticleSet<D>& ps) {
 }
 
 // near_moving_[c]: a non-inert particle lies in the 3^D block of cells around c. One pass per
-// dimension, each widening the mark by one cell along it.
+// dimension, each widening the mark by one cell along it: a cell's mark is ORed with those of the
+// cells before and after it along the dimension, as whole runs of cells (vectorised).
 template <int D>
-void NeighbourGrid<D>::mark_cells_near_moving(std::int64_t cells) {
-  near_moving_.resize(cells);
-  spread_.resize(cells);
+void NeighbourGrid<D>::mark_cells_near_moving() {
+  near_moving_.resize(cells_);
+  spread_.resize(cells_);
 #pragma omp parallel for schedule(static)
-  for (std::int64_t c = 0; c < cells; ++c) near_moving_[c] = slot_start_[2 * c + 1] > slot_start_[2 * c];
-  std::int64_t stride = 1;
+  for (std::int64_t c = 0; c < cells_; ++c) near_moving_[c] = slot_start_[2 * c + 1] > slot_start_[2 * c];
+  std::int64_t stride = 1;  // cells between neighbours along dimension d
   for (int d = 0; d < D; ++d) {
+    // Lines along d: `lines` of them, each of dims_[d] runs of `run` cells (stride apart).
+    const std::int64_t run = d == 0 ? 1 : stride, lines = cells_ / (run * dims_[d]);
+    const std::uint8_t* from = near_moving_.data();
+    std::uint8_t* to = spread_.data();
+    if (d == 0) {
 #pragma omp parallel for schedule(static)
-    for (std::int64_t c = 0; c < cells; ++c) {
-      const std::int64_t k = (c / stride) % dims_[d];
-      spread_[c] = near_moving_[c] | (k > 0 && near_moving_[c - stride]) | (k + 1 < dims_[d] && near_moving_[c + stride]);
+      for (std::int64_t l = 0; l < lines; ++l) {
+        const std::uint8_t* a = from + l * dims_[0];
+        std::uint8_t* b = to + l * dims_[0];
+        const std::int64_t last = dims_[0] - 1;
+        b[0] = a[0] | (last > 0 && a[1]);
+        for (std::int64_t k = 1; k < last; ++k) b[k] = a[k - 1] | a[k] | a[k + 1];
+        if (last > 0) b[last] = a[last - 1] | a[last];
+      }
+    } else {
+      const std::int64_t rows = lines * dims_[d];
+#pragma omp parallel for schedule(static)
+      for (std::int64_t r = 0; r < rows; ++r) {  // run k of line l
+        const std::int64_t k = r % dims_[d];
+        const std::uint8_t* a = from + r * run;
+        const std::uint8_t* before = k > 0 ? a - run : a;
+        const std::uint8_t* after = k + 1 < dims_[d] ? a + run : a;
+        std::uint8_t* b = to + r * run;
+        for (std::int64_t j = 0; j < run; ++j) b[j] = before[j] | a[j] | after[j];
+      }
     }
     near_moving_.swap(spread_);
     stride *= dims_[d];

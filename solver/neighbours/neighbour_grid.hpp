@@ -9,7 +9,9 @@
 // holds only its non-inert neighbours, and every other list includes the particle itself.
 //
 // A rebuild is two calls: `bin` sorts the particles into cells, `find_pairs` builds the lists; in
-// between, the particles can be put in storage_order() (then bin again).
+// between, the particles can be put in storage_order() (then bin again). Fixed wall particles never
+// move, so a step re-bins only the others (`bin_moving`) and keeps the walls' cells of the last
+// `bin`, as long as the grid itself (bounds, cell size) is unchanged.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -30,6 +32,10 @@ class NeighbourGrid {
   }
   /// Sorts the particles into cells; the lists are not valid until find_pairs.
   void bin(const ParticleSet<D>& particles);
+  /// bin() for particles whose inert ones (ParticleSet::inert) are those of the last bin(), at the
+  /// same places and with the same supports: recomputes the cells of the others only. Falls back
+  /// to bin() if the particles were reordered, removed or added since (ParticleSet::layout).
+  void bin_moving(const ParticleSet<D>& particles);
   /// Builds the lists from the cells of the last bin() of the same particles.
   void find_pairs(const ParticleSet<D>& particles);
 
@@ -47,8 +53,18 @@ class NeighbourGrid {
  private:
   std::size_t append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out,
                                 std::size_t used) const;
+  struct Bounds {
+    std::array<double, D> lo, hi;
+    double hmax;
+  };
+  /// Bounds of the positions and largest support of the particles `which` (exact: any threads).
+  static Bounds bounds(const ParticleSet<D>& ps, std::span<const std::uint32_t> which);
+  /// Grid from the bounds of all particles; true if it differs from the last one.
+  bool set_grid(const Bounds& moving, const Bounds& fixed);
+  /// Slot of particle i in the current grid (see slot_start_).
+  std::uint64_t slot(const ParticleSet<D>& ps, std::size_t i) const;
   void sort_by_slot(const ParticleSet<D>& ps);
-  void mark_cells_near_moving(std::int64_t cells);
+  void mark_cells_near_moving();
 
   std::vector<std::size_t> offset_;
   std::vector<std::uint32_t> index_;
@@ -60,6 +76,9 @@ class NeighbourGrid {
   std::vector<std::uint32_t> slot_start_; // start in sorted_ of slot 2c (non-inert of cell c) and 2c + 1 (inert)
   std::vector<std::uint64_t> slot_of_;    // slot of each particle
   std::vector<std::uint8_t> inert_;
+  std::vector<std::uint32_t> moving_, fixed_;  // indices of the non-inert and of the inert particles
+  Bounds fixed_bounds_{};                    // of the inert particles, at the last bin()
+  std::uint64_t layout_ = 0;                 // ParticleSet::layout at the last bin()
   std::vector<std::uint8_t> near_moving_, spread_;  // per cell: a non-inert particle in the 3^D block (bin)
   // Candidates of the pair search in sorted_ order (with its padding), one array per coordinate
   // and one of squared supports, so that the distance test runs on two candidates at once.
@@ -69,6 +88,7 @@ class NeighbourGrid {
   std::array<std::int64_t, D> dims_{};
   Vec<D> lo_;
   double cell_ = 0.0;
+  std::int64_t cells_ = 0;
   std::vector<std::size_t> storage_order_;
 };
 

@@ -154,7 +154,7 @@ void Simulator<D>::compute_densities() {
 
 template <int D>
 void Simulator<D>::sort_and_find_neighbours() {
-  nb_.bin(ps_);
+  nb_.bin_moving(ps_);  // a step moves no fixed wall particle
   // Particles that are neighbours in space should be neighbours in memory: every kSortEvery steps
   // (counted from the run's start, so a resumed run sorts at the same steps) they are put back in
   // storage order (NeighbourGrid::storage_order). A sort only relabels them (ParticleSet::permute, ids kept).
