@@ -24,6 +24,8 @@ constexpr std::size_t kChunk = 512;
 // Binning: particles are sorted in blocks of at least kSortBlock particles, one per thread, while
 // the slots are at most kSortSlotsPerParticle times the particles.
 constexpr std::size_t kSortBlock = 4096, kSortSlotsPerParticle = 4;
+// Slots per part of the parallel prefix sum of the slot sizes.
+constexpr std::size_t kPrefixPart = 16384;
 
 // Two candidates of the pair search (GCC/Clang vector extension; SSE2 lanes on x86-64).
 using Pair = double __attribute__((vector_size(16)));
@@ -144,18 +146,30 @@ void NeighbourGrid<D>::sort_by_slot(const ParticleSet<D>& ps) {
     const auto [first, last] = block_range(b);
     for (std::size_t i = first; i < last; ++i) ++count[slot_of_[i]];
   }
-  // Each block's count becomes the start of its share within the slot; slot_start_[s + 1] is
-  // first the slot's size, after the prefix sum the start of slot s + 1 (= n past the last slot).
-  const auto slot_count = static_cast<std::int64_t>(slots);
+  // Each block's count becomes the start of its share within the slot, and slot_start_ the
+  // prefix sum of the slots' sizes, in two parallel passes over fixed parts of the slots: each
+  // part's own prefix sum, then the parts' starts added (integers: exact, any threads).
+  const auto parts = static_cast<std::int64_t>((slots + kPrefixPart - 1) / kPrefixPart);
+  auto part_range = [&](std::int64_t q) { return std::pair{q * kPrefixPart, std::min(slots, (q + 1) * kPrefixPart)}; };
+  part_start_.resize(parts + 1);
 #pragma omp parallel for schedule(static)
-  for (std::int64_t s = 0; s < slot_count; ++s) {
-    std::uint32_t size = 0;
-    for (std::int64_t b = 0; b < blocks; ++b) size += std::exchange(block_count_[b * slots + s], size);
-    slot_start_[s + 1] = size;
+  for (std::int64_t q = 0; q < parts; ++q) {
+    std::uint32_t start = 0;
+    const auto [first, last] = part_range(q);
+    for (std::size_t s = first; s < last; ++s) {
+      slot_start_[s] = start;
+      for (std::int64_t b = 0; b < blocks; ++b) start += std::exchange(block_count_[b * slots + s], start - slot_start_[s]);
+    }
+    part_start_[q + 1] = start;
   }
-  slot_start_[0] = 0;
-  for (std::size_t s = 1; s <= slots; ++s) slot_start_[s] += slot_start_[s - 1];
-  slot_start_[slots + 1] = slot_start_[slots];
+  part_start_[0] = 0;
+  for (std::int64_t q = 0; q < parts; ++q) part_start_[q + 1] += part_start_[q];
+#pragma omp parallel for schedule(static)
+  for (std::int64_t q = 1; q < parts; ++q) {
+    const auto [first, last] = part_range(q);
+    for (std::size_t s = first; s < last; ++s) slot_start_[s] += part_start_[q];
+  }
+  slot_start_[slots] = slot_start_[slots + 1] = static_cast<std::uint32_t>(n);
   for (auto& c : cx_) c.resize(n + 1);
   ch2_.resize(n + 1);
   for (int d = 0; d < D; ++d) cx_[d][n] = 0.0;  // the padding
@@ -223,11 +237,11 @@ void NeighbourGrid<D>::mark_cells_near_moving() {
 // no neighbour and are skipped, which leaves the list unchanged. The scan tests two candidates at
 // a time, writes every candidate and advances past it only if it is a neighbour (no branch to
 // mispredict), into room reserved in `out` for all candidates after its first `used` entries;
-// returns the entries used then.
+// returns the entries used then. find_pairs does not call it for an inert particle with no non-inert
+// particle in its 3^D block of cells (near_moving_), whose list is empty.
 template <int D>
 std::size_t NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out,
                                                 std::size_t used) const {
-  if (inert_[i] && !near_moving_[slot_of_[i] / 2]) return used;  // no non-inert particle within reach
   const Vec<D> xi = ps.x[i];
   const double hi2 = ps.h[i] * ps.h[i];
   std::array<std::int64_t, D> c0{};
@@ -333,7 +347,8 @@ void NeighbourGrid<D>::find_pairs(const ParticleSet<D>& ps) {
     std::size_t used = 0;
     const std::size_t end = std::min(n, (c + 1) * kChunk);
     for (std::size_t i = c * kChunk; i < end; ++i) {
-      used = append_neighbours(ps, i, chunk_lists_[c], used);
+      if (!inert_[i] || near_moving_[slot_of_[i] / 2])  // else no non-inert particle within reach: an empty list
+        used = append_neighbours(ps, i, chunk_lists_[c], used);
       offset_[i + 1] = used;
     }
     chunk_used_[c] = used;

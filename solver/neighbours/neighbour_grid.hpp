@@ -84,6 +84,7 @@ class NeighbourGrid {
   // and one of squared supports, so that the distance test runs on two candidates at once.
   std::array<std::vector<double>, D> cx_;
   std::vector<double> ch2_;
+  std::vector<std::uint32_t> part_start_;   // per part of the slots: start in sorted_ (sort_by_slot)
   std::vector<std::uint32_t> block_count_;  // per block of particles and slot: counts, then fill positions (bin)
   std::array<std::int64_t, D> dims_{};
   Vec<D> lo_;
