@@ -254,7 +254,7 @@ std::size_t NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::s
   }
   // Reach with a margin far above the rounding of the cell bounds, so no neighbour is ever cut.
   const double reach2 = (cell_ * (1.0 + 1e-6)) * (cell_ * (1.0 + 1e-6));
-  std::array<std::uint32_t, 27> begin{}, end{};
+  std::array<std::uint32_t, 27> begin, end;  // ranges of candidates in sorted_, filled before use
   std::size_t ranges = 0, candidates = 0;
   auto add_range = [&](std::uint32_t b, std::uint32_t e) {
     begin[ranges] = b;
@@ -334,7 +334,8 @@ const std::vector<std::size_t>& NeighbourGrid<D>::storage_order() {
 template <int D>
 void NeighbourGrid<D>::find_pairs(const ParticleSet<D>& ps) {
   const std::size_t n = ps.size();
-  offset_.assign(n + 1, 0);
+  offset_.resize(n + 1);  // every entry is written below
+  offset_[0] = 0;
   if (n == 0) {
     index_.clear();
     return;
