@@ -11,11 +11,12 @@ using namespace sc;
 
 namespace {
 
-/// Random particles; with `walls`, every third is a fixed wall particle and half of those porous.
+/// Random particles with supports in [h_min, h_max]; with `walls`, every third is a fixed wall
+/// particle and half of those porous.
 template <int D>
-ParticleSet<D> random_particles(unsigned seed, std::size_t n, bool walls) {
+ParticleSet<D> random_particles(unsigned seed, std::size_t n, bool walls, double h_min = 0.03, double h_max = 0.12) {
   std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> pos(0.0, 1.0), radius(0.03, 0.12);
+  std::uniform_real_distribution<double> pos(0.0, 1.0), radius(h_min, h_max);
   ParticleSet<D> ps;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = ps.append();
@@ -28,8 +29,8 @@ ParticleSet<D> random_particles(unsigned seed, std::size_t n, bool walls) {
 }
 
 template <int D>
-void check_against_brute_force(unsigned seed, std::size_t n, bool walls) {
-  const ParticleSet<D> ps = random_particles<D>(seed, n, walls);
+void check_against_brute_force(unsigned seed, std::size_t n, bool walls, double h_min = 0.03, double h_max = 0.12) {
+  const ParticleSet<D> ps = random_particles<D>(seed, n, walls, h_min, h_max);
   NeighbourGrid<D> grid;
   grid.rebuild(ps);
   const auto brute = brute_force_neighbours(ps);
@@ -53,6 +54,8 @@ BOOST_AUTO_TEST_CASE(grid_equals_brute_force_2d) { check_against_brute_force<2>(
 BOOST_AUTO_TEST_CASE(grid_equals_brute_force_3d) { check_against_brute_force<3>(2, 2000, false); }
 BOOST_AUTO_TEST_CASE(grid_with_walls_equals_brute_force_2d) { check_against_brute_force<2>(3, 1500, true); }
 BOOST_AUTO_TEST_CASE(grid_with_walls_equals_brute_force_3d) { check_against_brute_force<3>(4, 2000, true); }
+// Small supports: over 16,384 slots (two cells each), so the slots' prefix sum runs in several parts.
+BOOST_AUTO_TEST_CASE(grid_of_many_cells_equals_brute_force_3d) { check_against_brute_force<3>(8, 8000, true, 0.035, 0.045); }
 
 // Binning sorts in one block of particles per thread (with enough particles): the lists, in their
 // order, must be those of one thread.
