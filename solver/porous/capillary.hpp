@@ -45,10 +45,13 @@ std::pair<Vec<D>, Vec<D>> porous_gradients(const ParticleSet<D>& ps, const Neigh
   Vec<D> ga = Vec<D>::Zero(), gb = Vec<D>::Zero();
   Mat<D> Ma = Mat<D>::Zero(), Mb = Mat<D>::Zero();
   bool shared = true;  // B's sum has had only neighbours of A's so far: its moment matrix is Ma
+  const kernel::Support<D> si(ps.h[i]);  // the neighbours' supports are mostly h_i: one lookup
   for (const auto j : nb.of(i)) {
     if (j == i || !b_part[j] || !(with_b || a_part[j])) continue;
     const Vec<D> d = ps.x[i] - ps.x[j];
-    const Vec<D> grad = ps.volume(j) * kernel::spiky_gradient<D>(d, d.norm(), ps.h[j]);
+    const double r = d.norm();
+    const Vec<D> grad = ps.volume(j) * (ps.h[j] == si.h ? kernel::spiky_gradient<D>(d, r, si)
+                                                         : kernel::spiky_gradient<D>(d, r, ps.h[j]));
     const Mat<D> moment = grad * (-d).transpose();
     if (a_part[j]) {
       ga += (A[j] - Ai) * grad;

@@ -26,29 +26,34 @@ double spacing_of(const ParticleSet<D>& ps, std::size_t i, const PorousParams& p
   return ps.phase_of(i) == Phase::Boundary ? p.spacing : std::pow(ps.volume(i), 1.0 / D);
 }
 
+/// Which particles are porous (porous_at), from the porosity at the start of the step (fill_slot
+/// updates it for moving sand).
+template <int D>
+void mark_porous(const ParticleSet<D>& ps, PorousWork<D>& w) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) w.porous[i] = porous_at(ps, i);
+}
+
 /// Porous particles and water particles with a porous neighbour take part; porous particles with
 /// a water neighbour closer than kContactDistance spacings are in contact with free water (the
 /// body's surface row, not the row under it). Other particles (non-porous walls and sand) have
 /// neither mark and skip the scan.
 template <int D>
-void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, PorousWork<D>& w) {
-  const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::int64_t i = 0; i < n; ++i) {
-    w.porous[i] = porous_at(ps, i);
-    const auto list = nb.of(i);
-    bool near = false, touches = false;
-    if (ps.phase_of(i) == Phase::Water) {
-      near = std::any_of(list.begin(), list.end(), [&](std::uint32_t j) { return porous_at(ps, j); });
-    } else if (w.porous[i]) {
-      const double reach = kContactDistance * spacing_of(ps, i, p);
-      touches = std::any_of(list.begin(), list.end(), [&](std::uint32_t j) {
-        return ps.phase_of(j) == Phase::Water && (ps.x[j] - ps.x[i]).norm() < reach;
-      });
-    }
-    w.part[i] = w.porous[i] || near;
-    w.contact[i] = w.porous[i] && touches;
+void mark_participant(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, PorousWork<D>& w,
+                      std::size_t i) {
+  const auto list = nb.of(i);
+  bool near = false, touches = false;
+  if (ps.phase_of(i) == Phase::Water) {
+    near = std::any_of(list.begin(), list.end(), [&](std::uint32_t j) { return w.porous[j] != 0; });
+  } else if (w.porous[i]) {
+    const double reach = kContactDistance * spacing_of(ps, i, p);
+    touches = std::any_of(list.begin(), list.end(), [&](std::uint32_t j) {
+      return ps.phase_of(j) == Phase::Water && (ps.x[j] - ps.x[i]).norm() < reach;
+    });
   }
+  w.part[i] = w.porous[i] || near;
+  w.contact[i] = w.porous[i] && touches;
 }
 
 /// Pore-water pressure of fixed (rigid) porous particles, ours [I]. Eq 25 answers only to skeleton
@@ -63,19 +68,13 @@ void mark_participants(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
 /// - moving (deformable) sand: Lenaerts' eq 25;
 /// - saturated, fixed, none of the above: harmonic, solved.
 template <int D>
-void pressure_roles(const ParticleSet<D>& ps, PorousWork<D>& w) {
-  const auto n = static_cast<std::int64_t>(ps.size());
-  w.role.resize(ps.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const bool saturated = ps.absorbed[i] + ps.emit_store[i] >= kSaturated * w.slot[i].capacity;
-    const bool solved = ps.phase_of(i) == Phase::Boundary && !w.contact[i] && !w.seepage[i] && saturated;
-    w.role[i] = !w.porous[i] ? PressureRole::None : solved ? PressureRole::Unknown : PressureRole::Prescribed;
-  }
+PressureRole pressure_role(const ParticleSet<D>& ps, const PorousWork<D>& w, std::size_t i) {
+  if (!w.porous[i]) return PressureRole::None;
+  const bool saturated = ps.absorbed[i] + ps.emit_store[i] >= kSaturated * w.slot[i].capacity;
+  const bool solved = ps.phase_of(i) == Phase::Boundary && !w.contact[i] && !w.seepage[i] && saturated;
+  return solved ? PressureRole::Unknown : PressureRole::Prescribed;
 }
 
-/// Saturation (eq 21), porosity (eq 24), capillary potential (eq 23) and pore pressure (eq 25)
-/// of porous particles; the saturated-porous view of water particles.
 /// Pore water that moving sand squeezed out: when the sand compressed since the last step (its
 /// pore volume φ V falls with the density, eq 24) and m_p exceeds the pores' capacity ρ^f φ V, the
 /// excess moves to the emission store (given to neighbouring water or emitted as new particles like
@@ -89,58 +88,69 @@ void squeeze_out(ParticleSet<D>& ps, std::size_t i, double capacity) {
   ps.emit_store[i] += excess;
 }
 
+/// Saturation (eq 21), porosity (eq 24), capillary potential (eq 23) and pore pressure (eq 25)
+/// of porous particle i; the saturated-porous view of a water particle.
 template <int D>
-void fill_slots(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, double dt, PorousWork<D>& w) {
-  const auto n = static_cast<std::int64_t>(ps.size());
+void fill_slot(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, double dt, PorousWork<D>& w, std::size_t i) {
   const double rho_f = p.fluid_density;
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (!w.part[i]) continue;
-    ExchangeSlot<D>& s = w.slot[i];
-    s = ExchangeSlot<D>{};
-    s.x = ps.x[i];
-    s.h = ps.h[i];
-    s.height = g.norm() > 0.0 ? -ps.x[i].dot(g) / g.norm() : 0.0;
-    if (!w.porous[i]) {
-      w.pc[i] = 0.0;  // water in contact counts as saturated
-      w.pp[i] = 0.0;
-      s.mass = ps.m[i];
-      s.capacity = p.water_mass;
-      s.flow_factor = 1.0;
-      s.volume = p.water_mass / rho_f;
-      s.contact_speed = p.spacing / dt;
-      s.flow_factor = ps.m[i] > 0.0 ? p.water_mass / ps.m[i] : 0.0;  // gives as a full particle
-      continue;
-    }
-    const bool fixed = ps.phase_of(i) == Phase::Boundary;
-    const double V = fixed ? std::pow(p.spacing, D) : ps.volume(i);
-    ps.porosity[i] = fixed ? p.porosity : porosity(p.porosity, ps.rho0[i], ps.rho[i]);
-    if (!fixed) squeeze_out(ps, i, rho_f * ps.porosity[i] * V);
-    const double S = saturation(ps.absorbed[i], rho_f, ps.porosity[i], V);
-    ps.saturation[i] = S;
-    ps.capillary[i] = capillary_potential(S, p.capillary_constant, p.capillary_exponent);
-    if (!fixed)
-      ps.pore_pressure[i] = pore_pressure(p.pore_stiffness, S, ps.rho[i], ps.rho0[i], p.pore_gamma,
-                                          p.thesis_pore_pressure_ratio);
-    w.pc[i] = ps.capillary[i];
-    w.pp[i] = ps.pore_pressure[i];
-    s.mass = ps.absorbed[i];
-    s.capacity = rho_f * ps.porosity[i] * V;
-    s.flow_factor = std::pow(S, p.saturation_exponent);
-    s.volume = V;
-    s.draws_up = ps.capillary[i] > rho_f * g.norm() * spacing_of(ps, i, p);
+  if (!w.part[i]) return;
+  ExchangeSlot<D>& s = w.slot[i];
+  s = ExchangeSlot<D>{};
+  s.x = ps.x[i];
+  s.h = ps.h[i];
+  s.height = g.norm() > 0.0 ? -ps.x[i].dot(g) / g.norm() : 0.0;
+  if (!w.porous[i]) {
+    w.pc[i] = 0.0;  // water in contact counts as saturated
+    w.pp[i] = 0.0;
+    s.mass = ps.m[i];
+    s.capacity = p.water_mass;
+    s.flow_factor = 1.0;
+    s.volume = p.water_mass / rho_f;
+    s.contact_speed = p.spacing / dt;
+    s.flow_factor = ps.m[i] > 0.0 ? p.water_mass / ps.m[i] : 0.0;  // gives as a full particle
+    return;
   }
+  const bool fixed = ps.phase_of(i) == Phase::Boundary;
+  const double V = fixed ? std::pow(p.spacing, D) : ps.volume(i);
+  ps.porosity[i] = fixed ? p.porosity : porosity(p.porosity, ps.rho0[i], ps.rho[i]);
+  if (!fixed) squeeze_out(ps, i, rho_f * ps.porosity[i] * V);
+  const double S = saturation(ps.absorbed[i], rho_f, ps.porosity[i], V);
+  ps.saturation[i] = S;
+  ps.capillary[i] = capillary_potential(S, p.capillary_constant, p.capillary_exponent);
+  if (!fixed)
+    ps.pore_pressure[i] = pore_pressure(p.pore_stiffness, S, ps.rho[i], ps.rho0[i], p.pore_gamma,
+                                        p.thesis_pore_pressure_ratio);
+  w.pc[i] = ps.capillary[i];
+  w.pp[i] = ps.pore_pressure[i];
+  s.mass = ps.absorbed[i];
+  s.capacity = rho_f * ps.porosity[i] * V;
+  s.flow_factor = std::pow(S, p.saturation_exponent);
+  s.volume = V;
+  s.draws_up = ps.capillary[i] > rho_f * g.norm() * spacing_of(ps, i, p);
 }
 
-/// The pond's pressure at fixed porous particles in contact with water (pressure_roles).
+/// Marks the participants and fills their slots in one pass (each particle reads only the porous
+/// marks of its neighbours, set before); returns whether a fixed porous particle touches water.
+template <int D>
+bool prepare_participants(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
+                          double dt, PorousWork<D>& w) {
+  mark_porous(ps, w);
+  const auto n = static_cast<std::int64_t>(ps.size());
+  bool fixed_contact = false;
+#pragma omp parallel for schedule(dynamic, 256) reduction(|| : fixed_contact)
+  for (std::int64_t i = 0; i < n; ++i) {
+    mark_participant(ps, nb, p, w, i);
+    fill_slot(ps, p, g, dt, w, i);
+    fixed_contact = fixed_contact || (w.contact[i] && ps.phase_of(i) == Phase::Boundary);
+  }
+  return fixed_contact;
+}
+
+/// The pond's pressure at fixed porous particles in contact with water (pressure_role).
 template <int D>
 void set_contact_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
                           const PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
-  bool any = false;
-#pragma omp parallel for schedule(static) reduction(|| : any)
-  for (std::int64_t i = 0; i < n; ++i) any = any || (w.contact[i] && ps.phase_of(i) == Phase::Boundary);
-  if (!any) return;
   const std::vector<double> column = water_column_pressure(ps, p.spacing, p.water_mass, p.fluid_density, g.norm());
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i)
@@ -171,21 +181,30 @@ void pore_velocities(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porou
   }
 }
 
-/// Which water particles occupy a place (place_free).
-enum class WaterBlocks { All, Staying, None };
+/// Which of the places of exposure are free: no particle of i's neighbourhood lies within
+/// kPlacementGap spacings of it, counting the water particles as each says.
+struct FreePlaces {
+  bool below = true;           ///< one spacing below i (along g), counting no water
+  bool target_solid = true;    ///< at the target, counting no water
+  bool target_staying = true;  ///< at the target, counting the water not moving away along v_p
+  bool target_all = true;      ///< at the target, counting all water
+};
 
-/// No particle of i's neighbourhood lies within kPlacementGap spacings of `place`, counting the
-/// water particles as `water` says: all, only those not moving away along `away`, or none.
+/// FreePlaces of i in one pass over its neighbours (`below` and `target` may be null: not asked).
 template <int D>
-bool place_free(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i, const Vec<D>& place, double s,
-                WaterBlocks water, const Vec<D>& away = Vec<D>::Zero()) {
-  bool free = true;
+FreePlaces free_places(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i, const Vec<D>* below,
+                       const Vec<D>* target, double s, const Vec<D>& away) {
+  FreePlaces f;
+  const double gap = kPlacementGap * s;
   for (const auto j : nb.of(i)) {
     const bool is_water = ps.phase_of(j) == Phase::Water;
-    const bool counts = !is_water || water == WaterBlocks::All || (water == WaterBlocks::Staying && ps.v[j].dot(away) <= 0.0);
-    free = free && (!counts || (ps.x[j] - place).norm() >= kPlacementGap * s);
+    if (below && !is_water && !((ps.x[j] - *below).norm() >= gap)) f.below = false;
+    if (!target || (ps.x[j] - *target).norm() >= gap) continue;
+    f.target_all = false;
+    if (!is_water) f.target_solid = false;
+    if (!is_water || ps.v[j].dot(away) <= 0.0) f.target_staying = false;
   }
-  return free;
+  return f;
 }
 
 /// Seepage into empty space: the target one spacing along v_p and the flow a full half-space
@@ -194,7 +213,7 @@ bool place_free(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_
 /// does not stop the seepage: the store waits until the place is free, w.placeable). A particle
 /// with a place one spacing along v_p or below it (along g) that holds no solid or porous particle
 /// (water dripping there does not count) is on a seepage face (w.seepage: its pore-water pressure
-/// is the atmosphere's, pressure_roles), whatever v_p is now.
+/// is the atmosphere's, pressure_role), whatever v_p is now.
 template <int D>
 void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
               PorousWork<D>& w) {
@@ -209,13 +228,16 @@ void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porous
     const double speed = ps.pore_velocity[i].norm();
     const double s = spacing_of(ps, i, p);
     if (ps.capillary[i] > p.fluid_density * g.norm() * s) continue;
-    const bool open_below = g.norm() > 0.0 && place_free(ps, nb, i, Vec<D>(ps.x[i] + (s / g.norm()) * g), s, WaterBlocks::None);
-    w.seepage[i] = open_below;
+    const bool down = g.norm() > 0.0;
+    const Vec<D> below = down ? Vec<D>(ps.x[i] + (s / g.norm()) * g) : ps.x[i];
+    if (speed > 0.0) w.target[i] = ps.x[i] + (s / speed) * ps.pore_velocity[i];
+    const FreePlaces f = free_places(ps, nb, i, down ? &below : nullptr, speed > 0.0 ? &w.target[i] : nullptr, s,
+                                     ps.pore_velocity[i]);
+    w.seepage[i] = down && f.below;
     if (speed <= 0.0) continue;
-    w.target[i] = ps.x[i] + (s / speed) * ps.pore_velocity[i];
-    w.exposed[i] = place_free(ps, nb, i, w.target[i], s, WaterBlocks::Staying, ps.pore_velocity[i]);
-    w.placeable[i] = w.exposed[i] && place_free(ps, nb, i, w.target[i], s, WaterBlocks::All);
-    w.seepage[i] = w.seepage[i] || place_free(ps, nb, i, w.target[i], s, WaterBlocks::None);
+    w.exposed[i] = f.target_staying;
+    w.placeable[i] = w.exposed[i] && f.target_all;
+    w.seepage[i] = w.seepage[i] || f.target_solid;
     if (w.exposed[i] && ps.absorbed[i] > 0.0) w.ghost[i] = w.slot[i].flow_factor * ps.absorbed[i] * speed / s;
   }
 }
@@ -226,7 +248,9 @@ bool exchanges(const PorousWork<D>& w, std::size_t i, std::size_t j) {
 }
 
 /// Conserving diffusion (28′): raw flows (kept per neighbour-list entry), limiter scales,
-/// limited update (eq 30).
+/// limited update (eq 30). A particle whose raw flows are all zero (w.flowing[i] = 0: dry sand
+/// with dry neighbours, most of a scene) skips its neighbours in the limiter passes: they would
+/// only add +0 to its sums (sums that start at +0 or above), so the bits are the same.
 template <int D>
 void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, double dt, PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
@@ -236,8 +260,10 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     w.a[i] = w.b[i] = 0.0;
+    w.flowing[i] = 0;
     if (!w.part[i]) continue;
     double out = w.ghost[i], in = 0.0;
+    bool flowing = false;
     std::size_t k = nb.list_start(i);
     for (const auto j : nb.of(i)) {
       const bool pair = exchanges(w, i, j);
@@ -246,9 +272,11 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
       if (pair) {
         out += to[k];
         in += from[k];
+        flowing = flowing || to[k] != 0.0 || from[k] != 0.0;
       }
       ++k;
     }
+    w.flowing[i] = flowing;
     w.a[i] = outflow_scale(w.slot[i].mass, out, dt);
     w.b[i] = inflow_scale(w.slot[i].mass, w.slot[i].capacity, in, dt);
     w.in[i] = in;
@@ -263,7 +291,8 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
     if (!w.part[i]) continue;
     double out = w.ghost[i] * w.a[i];
     std::size_t k = nb.list_start(i);
-    for (const auto j : nb.of(i)) out += to[k++] * std::min(w.a[i], w.b[j]);
+    if (w.flowing[i])
+      for (const auto j : nb.of(i)) out += to[k++] * std::min(w.a[i], w.b[j]);
     w.relaxed[i] = inflow_scale(w.slot[i].mass - dt * out, w.slot[i].capacity, w.in[i], dt);
   }
   w.b.swap(w.relaxed);
@@ -272,11 +301,12 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
     if (!w.part[i]) continue;
     double out = w.ghost[i] * w.a[i], in = 0.0;
     std::size_t k = nb.list_start(i);
-    for (const auto j : nb.of(i)) {
-      out += to[k] * std::min(w.a[i], w.b[j]);
-      in += from[k] * std::min(w.a[j], w.b[i]);
-      ++k;
-    }
+    if (w.flowing[i])
+      for (const auto j : nb.of(i)) {
+        out += to[k] * std::min(w.a[i], w.b[j]);
+        in += from[k] * std::min(w.a[j], w.b[i]);
+        ++k;
+      }
     const double m = euler_mass(w.slot[i].mass, in, out, dt);
     if (w.porous[i]) {
       ps.absorbed[i] = m;
@@ -287,17 +317,21 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
   }
 }
 
-/// Pore-water pressure of fixed porous particles for the next step (pressure_roles).
+/// Pore-water pressure of fixed porous particles for the next step (pressure_role).
 template <int D>
 void update_rigid_pore_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
                                 PorousWork<D>& w) {
-  pressure_roles(ps, w);
   const auto n = static_cast<std::int64_t>(ps.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
+  w.role.resize(ps.size());
+  bool unknowns = false;
+#pragma omp parallel for schedule(static) reduction(|| : unknowns)
+  for (std::int64_t i = 0; i < n; ++i) {
+    w.role[i] = pressure_role(ps, w, i);
+    unknowns = unknowns || w.role[i] == PressureRole::Unknown;
     if (w.role[i] == PressureRole::Prescribed && ps.phase_of(i) == Phase::Boundary && !w.contact[i])
       ps.pore_pressure[i] = 0.0;
-  solve_harmonic_pressure(ps, nb, w.role, p.fluid_density, g, ps.pore_pressure);
+  }
+  if (unknowns) solve_harmonic_pressure(ps, nb, w.role, p.fluid_density, g, ps.pore_pressure);
 }
 
 /// The literal eq 28 (switch "lenaerts_literal"): each particle integrates its own rate and is
@@ -394,12 +428,10 @@ PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
                              const Vec<D>& gravity, double dt, PorousWork<D>& w) {
   const std::size_t n = ps.size();
   w.slot.resize(n);
-  for (auto* v : {&w.part, &w.porous, &w.exposed, &w.placeable, &w.seepage, &w.contact}) v->resize(n);
+  for (auto* v : {&w.part, &w.porous, &w.exposed, &w.placeable, &w.seepage, &w.contact, &w.flowing}) v->resize(n);
   for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b, &w.relaxed}) v->resize(n);
   w.target.resize(n);
-  mark_participants(ps, nb, params, w);
-  fill_slots(ps, params, gravity, dt, w);
-  set_contact_pressure(ps, nb, params, gravity, w);
+  if (prepare_participants(ps, nb, params, gravity, dt, w)) set_contact_pressure(ps, nb, params, gravity, w);
   pore_velocities(ps, nb, params, gravity, w);
   PorousStepCounts counts;
   if (params.diffusion == PorousDiffusion::LenaertsLiteral) {

@@ -46,7 +46,7 @@ struct PorousStepCounts {
 template <int D>
 struct PorousWork {
   std::vector<ExchangeSlot<D>> slot;
-  std::vector<std::uint8_t> part, porous, exposed, placeable, seepage, contact;
+  std::vector<std::uint8_t> part, porous, exposed, placeable, seepage, contact, flowing;
   std::vector<double> pc, pp, ghost, in, a, b, relaxed;
   std::vector<double> to, from;  // Φ_{i→j}, Φ_{j→i} per neighbour-list entry
   std::vector<PressureRole> role;
