@@ -38,16 +38,17 @@ void mark_porous(const ParticleSet<D>& ps, PorousWork<D>& w) {
 /// Porous particles and water particles with a porous neighbour take part; porous particles with
 /// a water neighbour closer than kContactDistance spacings are in contact with free water (the
 /// body's surface row, not the row under it). Other particles (non-porous walls and sand) have
-/// neither mark and skip the scan.
+/// neither mark and skip the scan. Keeps the spacing of porous particles for the later passes.
 template <int D>
 void mark_participant(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, PorousWork<D>& w,
                       std::size_t i) {
   const auto list = nb.of(i);
   bool near = false, touches = false;
+  w.spacing[i] = w.porous[i] ? spacing_of(ps, i, p) : 0.0;
   if (ps.phase_of(i) == Phase::Water) {
     near = std::any_of(list.begin(), list.end(), [&](std::uint32_t j) { return w.porous[j] != 0; });
   } else if (w.porous[i]) {
-    const double reach = kContactDistance * spacing_of(ps, i, p);
+    const double reach = kContactDistance * w.spacing[i];
     touches = std::any_of(list.begin(), list.end(), [&](std::uint32_t j) {
       return ps.phase_of(j) == Phase::Water && (ps.x[j] - ps.x[i]).norm() < reach;
     });
@@ -126,7 +127,7 @@ void fill_slot(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, doubl
   s.capacity = rho_f * ps.porosity[i] * V;
   s.flow_factor = std::pow(S, p.saturation_exponent);
   s.volume = V;
-  s.draws_up = ps.capillary[i] > rho_f * g.norm() * spacing_of(ps, i, p);
+  s.draws_up = ps.capillary[i] > rho_f * g.norm() * w.spacing[i];
 }
 
 /// Marks the participants and fills their slots in one pass (each particle reads only the porous
@@ -226,7 +227,7 @@ void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porous
     w.ghost[i] = 0.0;
     if (!w.porous[i]) continue;
     const double speed = ps.pore_velocity[i].norm();
-    const double s = spacing_of(ps, i, p);
+    const double s = w.spacing[i];
     if (ps.capillary[i] > p.fluid_density * g.norm() * s) continue;
     const bool down = g.norm() > 0.0;
     const Vec<D> below = down ? Vec<D>(ps.x[i] + (s / g.norm()) * g) : ps.x[i];
@@ -396,7 +397,7 @@ std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const PorousWork
   typename ParticleSet<D>::VecArray placed;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (!w.porous[i] || ps.emit_store[i] <= 0.0) continue;
-    const double s = spacing_of(ps, i, p);
+    const double s = w.spacing[i];
     if (!w.exposed[i]) {
       const double back = std::min(ps.emit_store[i], std::max(0.0, w.slot[i].capacity - ps.absorbed[i]));
       ps.absorbed[i] += back;
@@ -429,7 +430,7 @@ PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
   const std::size_t n = ps.size();
   w.slot.resize(n);
   for (auto* v : {&w.part, &w.porous, &w.exposed, &w.placeable, &w.seepage, &w.contact, &w.flowing}) v->resize(n);
-  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b, &w.relaxed}) v->resize(n);
+  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b, &w.relaxed, &w.spacing}) v->resize(n);
   w.target.resize(n);
   if (prepare_participants(ps, nb, params, gravity, dt, w)) set_contact_pressure(ps, nb, params, gravity, w);
   pore_velocities(ps, nb, params, gravity, w);

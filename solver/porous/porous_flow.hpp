@@ -48,6 +48,7 @@ struct PorousWork {
   std::vector<ExchangeSlot<D>> slot;
   std::vector<std::uint8_t> part, porous, exposed, placeable, seepage, contact, flowing;
   std::vector<double> pc, pp, ghost, in, a, b, relaxed;
+  std::vector<double> spacing;  // spacing_of porous particles (their volume does not change in a step)
   std::vector<double> to, from;  // Φ_{i→j}, Φ_{j→i} per neighbour-list entry
   std::vector<PressureRole> role;
   typename ParticleSet<D>::VecArray target;

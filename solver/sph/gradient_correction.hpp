@@ -2,9 +2,11 @@
 // gradient exact for linear fields in the interior.
 #pragma once
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include "core/particle_set.hpp"
+#include "core/smallest_eigenvalue.hpp"
 #include "neighbours/neighbour_grid.hpp"
 #include "sph/kernels.hpp"
 
@@ -13,23 +15,63 @@ namespace sc {
 template <int D>
 using MatArray = std::vector<Mat<D>, Eigen::aligned_allocator<Mat<D>>>;
 
+/// Whether the symmetric A (upper triangle read) is positive definite, by Sylvester's criterion:
+/// every leading principal minor is positive.
+inline bool positive_definite(const Mat<2>& A) {
+  return A(0, 0) > 0.0 && A(0, 0) * A(1, 1) - A(0, 1) * A(0, 1) > 0.0;
+}
+inline bool positive_definite(const Mat<3>& A) {
+  if (!(A(0, 0) > 0.0 && A(0, 0) * A(1, 1) - A(0, 1) * A(0, 1) > 0.0)) return false;
+  const double det = A(0, 0) * (A(1, 1) * A(2, 2) - A(1, 2) * A(1, 2)) - A(0, 1) * (A(0, 1) * A(2, 2) - A(1, 2) * A(0, 2)) +
+                     A(0, 2) * (A(0, 1) * A(1, 2) - A(1, 1) * A(0, 2));
+  return det > 0.0;
+}
+
 /// The blend weight of gradient_correction: clamp((λ − none)/(full − none), 0, 1) for the smallest
-/// eigenvalue λ of the symmetric S. Most particles are settled without the eigensolver: λ > full
-/// when S − (full + δ) I has a Cholesky factorisation, λ < none when a diagonal entry is below
+/// eigenvalue λ of the symmetric S, in closed form (core/smallest_eigenvalue.hpp; the iterative
+/// Eigen solver was a third of the correction's cost). Most particles are settled without it:
+/// λ > full when S − (full + δ) I is positive definite, λ < none when a diagonal entry is below
 /// none − δ (λ ≤ min_k S_kk). With δ = kMargin |S| far above the rounding of either test and of
-/// the solver, the weight is the solver's, bitwise: exactly 1 (or 0).
+/// the closed form, the weight is the closed form's, bitwise: exactly 1 (or 0).
 template <int D>
 double correction_weight(const Mat<D>& S, double none, double full) {
   constexpr double kMargin = 1e-9;
   const double margin = kMargin * S.cwiseAbs().maxCoeff();
-  if (Eigen::LLT<Mat<D>>(S - (full + margin) * Mat<D>::Identity()).info() == Eigen::Success) return 1.0;
+  if (positive_definite(Mat<D>(S - (full + margin) * Mat<D>::Identity()))) return 1.0;
   if (S.diagonal().minCoeff() <= none - margin) return 0.0;
-  const double lambda = Eigen::SelfAdjointEigenSolver<Mat<D>>(S, Eigen::EigenvaluesOnly).eigenvalues().minCoeff();
-  return std::clamp((lambda - none) / (full - none), 0.0, 1.0);
+  return std::clamp((smallest_eigenvalue(S) - none) / (full - none), 0.0, 1.0);
 }
 
-/// Correction matrix L_i = (Σ_j V_j ∇W_ij ⊗ (x_j − x_i))⁻¹ with the spiky gradient averaged over
-/// both supports, so that Σ_j V_j (A_j − A_i) L_i ∇W_ij = ∇A exactly for a linear field A.
+/// The moment matrix M_i = Σ_j V_j ∇W_ij ⊗ (x_j − x_i) of gradient_correction, with the spiky
+/// gradient averaged over both supports. Each term is −V_j W'(r)/r d dᵀ (d = x_i − x_j): symmetric,
+/// so only the upper triangle is summed (with one division per pair) and then mirrored, and M is
+/// exactly symmetric.
+template <int D>
+Mat<D> moment_matrix(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i) {
+  std::array<double, D * (D + 1) / 2> upper{};  // row by row; a local, so it stays in registers
+  const Vec<D> xi = ps.x[i];
+  const kernel::Support<D> si(ps.h[i]);
+  const Vec<D>* x = ps.x.data();
+  const double *h = ps.h.data(), *m = ps.m.data(), *rho = ps.rho.data();
+  for (const auto j : nb.of(i)) {
+    const Vec<D> d = xi - x[j];
+    const double r = d.norm();
+    if (r <= 0.0) continue;  // i itself: no direction
+    const double dw = kernel::pair_average([&](const kernel::Support<D>& s) { return kernel::spiky_derivative<D>(r, s); }, si, h[j]);
+    const Vec<D> wd = (-(m[j] * dw) / (rho[j] * r)) * d;
+    int k = 0;
+    for (int a = 0; a < D; ++a)
+      for (int b = a; b < D; ++b) upper[k++] += wd[a] * d[b];
+  }
+  Mat<D> M;
+  int k = 0;
+  for (int a = 0; a < D; ++a)
+    for (int b = a; b < D; ++b) M(a, b) = M(b, a) = upper[k++];
+  return M;
+}
+
+/// Correction matrix L_i = M_i⁻¹ (moment_matrix), so that Σ_j V_j (A_j − A_i) L_i ∇W_ij = ∇A exactly
+/// for a linear field A.
 /// Where the neighbourhood is incomplete (free surface) the moment matrix loses rank; there L_i
 /// blends continuously to I (the uncorrected kernel) as the smallest eigenvalue λ of the moment
 /// matrix falls from `full` to `none`: L = (1 − w) I + w M⁻¹, w = clamp((λ − none)/(full − none)).
@@ -38,17 +80,8 @@ double correction_weight(const Mat<D>& S, double none, double full) {
 template <int D>
 Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i,
                            double none = 0.5, double full = 0.8) {
-  Mat<D> M = Mat<D>::Zero();
-  const Vec<D> xi = ps.x[i];
-  const kernel::Support<D> si(ps.h[i]);
-  for (const auto j : nb.of(i)) {
-    if (j == i) continue;
-    const Vec<D> d = xi - ps.x[j];
-    const double r = d.norm();
-    const Vec<D> grad = kernel::pair_average([&](const kernel::Support<D>& s) { return kernel::spiky_gradient<D>(d, r, s); }, si, ps.h[j]);
-    M += ps.volume(j) * grad * (-d).transpose();
-  }
-  const double w = correction_weight(Mat<D>(0.5 * (M + M.transpose())), none, full);
+  const Mat<D> M = moment_matrix(ps, nb, i);
+  const double w = correction_weight(M, none, full);
   if (w == 0.0) return Mat<D>::Identity();
   return (1.0 - w) * Mat<D>::Identity() + w * M.inverse();
 }

@@ -133,12 +133,18 @@ inline double spiky_derivative(double r, double h) {
   return constant::spiky_derivative<D>(h) * q * q;
 }
 
+template <int D>
+inline double spiky_derivative(double r, const Support<D>& s) {
+  if (r >= s.h) return 0.0;
+  const double q = s.h - r;
+  return s.spiky_derivative * q * q;
+}
+
 /// spiky gradient W'(r) d/r (zero at r = 0, where the direction is undefined).
 template <int D>
 inline Vec<D> spiky_gradient(const Vec<D>& d, double r, const Support<D>& s) {
   if (r >= s.h || r <= 0.0) return Vec<D>::Zero();
-  const double q = s.h - r;
-  return (s.spiky_derivative * q * q / r) * d;
+  return (spiky_derivative<D>(r, s) / r) * d;
 }
 template <int D>
 inline Vec<D> spiky_gradient(const Vec<D>& d, double r, double h) {
