@@ -4,6 +4,7 @@
 // force and torque [thesis eq. 13] [thesis eq. 14], inertia [thesis eq. 17], τ = Iα
 // [thesis eq. 15] [thesis eq. 16], rigid velocity update [thesis eq. 18], frictional force
 // [thesis eq. 19], Bell contact and wall friction, clusters, rigid clusters against walls.
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <numeric>
 #include <random>
@@ -561,9 +562,9 @@ BOOST_AUTO_TEST_CASE(wall_friction_never_reverses_the_tangential_velocity) {
   BOOST_TEST(0.01 + 1e-3 * slow[0] / 0.1 == 0.0, tt::tolerance(1e-12));
 }
 
-BOOST_AUTO_TEST_CASE(clusters_by_breadth_first_search_in_stable_order) {
+BOOST_AUTO_TEST_CASE(clusters_are_connected_components_in_stable_order) {
   // Two separated blocks of rigid sand make two clusters, numbered by their lowest index, each
-  // listing its seed first; flowing particles belong to none.
+  // listing its members in increasing index order; flowing particles belong to none.
   ParticleSet<2> ps = sand_lattice(8, 0.01);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     ps.rigid[i] = 1;
@@ -576,9 +577,25 @@ BOOST_AUTO_TEST_CASE(clusters_by_breadth_first_search_in_stable_order) {
   BOOST_TEST(clusters.size() == 2u);
   BOOST_TEST(clusters[0].front() == 0u);
   BOOST_TEST(clusters[0].size() + clusters[1].size() == ps.size() - 1);
+  for (const auto& members : clusters) BOOST_TEST(std::is_sorted(members.begin(), members.end()));
   BOOST_TEST(ps.cluster[10] == 0);
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (i != 10) BOOST_TEST(ps.cluster[i] == (ps.x[i][0] > 0.04 ? 2 : 1));
+  // An arch (∩) of rigid sand, its two legs 4 spacings apart (h = 2 spacings): the legs, seeded at
+  // indices 0 and 7 of the bottom row, meet only in the top rows, and make one cluster.
+  const int n = 10;
+  ParticleSet<2> arch = sand_lattice(n, 0.01);
+  std::size_t rigid = 0;
+  for (std::size_t i = 0; i < arch.size(); ++i) {
+    const std::size_t row = i / n, column = i % n;
+    arch.rigid[i] = row >= 8 || column <= 2 || column >= 7;
+    rigid += arch.rigid[i];
+  }
+  nb.rebuild(arch);
+  const Clusters one = find_clusters(arch, nb);
+  BOOST_TEST_REQUIRE(one.size() == 1u);
+  BOOST_TEST(one[0].size() == rigid);
+  BOOST_TEST(std::is_sorted(one[0].begin(), one[0].end()));
 }
 
 
