@@ -1,52 +1,12 @@
 #include "sand/clusters.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 namespace sc {
 
 namespace {
-
-/// The root of a particle that joins no cluster (find_clusters).
-constexpr std::uint32_t kNoCluster = std::numeric_limits<std::uint32_t>::max();
-
-/// A forest over the particle indices in which every link points to a smaller index, so the root of
-/// a tree is its smallest member whatever the order of the links. The links are relaxed atomics:
-/// threads may link and shorten paths at the same time (integers only; the result does not depend
-/// on the interleaving).
-class MinRootForest {
- public:
-  explicit MinRootForest(std::vector<std::uint32_t>& parent) : parent_(parent) {}
-
-  /// The root of x's tree (path halving on the way).
-  std::uint32_t root(std::uint32_t x) const {
-    for (;;) {
-      const std::uint32_t p = link(x).load(std::memory_order_relaxed);
-      if (p == x) return x;
-      const std::uint32_t g = link(p).load(std::memory_order_relaxed);
-      if (g != p) link(x).store(g, std::memory_order_relaxed);  // g < p < x: still x's ancestor
-      x = g;
-    }
-  }
-  /// Joins the trees of a and b: the larger root is linked below the smaller one.
-  void join(std::uint32_t a, std::uint32_t b) const {
-    for (;;) {
-      a = root(a);
-      b = root(b);
-      if (a == b) return;
-      if (a < b) std::swap(a, b);
-      std::uint32_t expected = a;  // fails if another thread linked a meanwhile: retry from the roots
-      if (link(a).compare_exchange_weak(expected, b, std::memory_order_relaxed)) return;
-    }
-  }
-
- private:
-  std::atomic_ref<std::uint32_t> link(std::uint32_t x) const { return std::atomic_ref<std::uint32_t>(parent_[x]); }
-  std::vector<std::uint32_t>& parent_;
-};
 
 /// Members per chunk of the sums of cluster_motions.
 constexpr std::size_t kMembersPerChunk = 512;
@@ -55,36 +15,30 @@ constexpr std::size_t kMembersPerChunk = 512;
 
 template <int D>
 Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb) {
+  // -1 marks the particles that never join (all but rigid sand), in parallel, so the serial
+  // search below reads one field per neighbour; they get 0 (no cluster) back at the end.
+  constexpr std::int32_t kNever = -1;
   const auto n = static_cast<std::int64_t>(ps.size());
-  auto joins = [&ps](std::size_t i) { return ps.phase_of(i) == Phase::Sand && ps.rigid[i]; };
-  std::vector<std::uint32_t> parent(ps.size()), root(ps.size(), kNoCluster);
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
-  const MinRootForest forest(parent);
-  // Every pair of rigid neighbours once (the lists are symmetric).
-#pragma omp parallel for schedule(dynamic, 1024)
-  for (std::int64_t i = 0; i < n; ++i) {
-    if (!joins(i)) continue;
-    const auto self = static_cast<std::uint32_t>(i);
-    for (const auto j : nb.of(i))
-      if (j < self && joins(j)) forest.join(self, j);
+  for (std::int64_t i = 0; i < n; ++i) ps.cluster[i] = ps.phase_of(i) == Phase::Sand && ps.rigid[i] ? 0 : kNever;
+  auto joins = [&](std::size_t i) { return ps.cluster[i] == 0; };
+  Clusters clusters;
+  for (std::size_t seed = 0; seed < ps.size(); ++seed) {
+    if (!joins(seed)) continue;
+    const auto number = static_cast<std::int32_t>(clusters.size() + 1);
+    ps.cluster[seed] = number;
+    std::vector<std::size_t>& members = clusters.emplace_back(1, seed);  // also the breadth-first queue
+    for (std::size_t k = 0; k < members.size(); ++k) {
+      const std::size_t i = members[k];
+      for (const auto j : nb.of(i))
+        if (joins(j)) {
+          ps.cluster[j] = number;
+          members.push_back(j);
+        }
+    }
   }
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
-    if (joins(i)) root[i] = forest.root(static_cast<std::uint32_t>(i));
-  // The clusters numbered by their smallest members (the roots) in increasing order, each listing
-  // its members in increasing index order.
-  std::vector<std::int32_t> number(ps.size(), 0);
-  Clusters clusters;
-  for (std::size_t i = 0; i < ps.size(); ++i)
-    if (root[i] == i) {
-      clusters.emplace_back();
-      number[i] = static_cast<std::int32_t>(clusters.size());
-    }
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) ps.cluster[i] = root[i] == kNoCluster ? 0 : number[root[i]];
-  for (std::size_t i = 0; i < ps.size(); ++i)
-    if (ps.cluster[i] != 0) clusters[ps.cluster[i] - 1].push_back(i);
+  for (std::int64_t i = 0; i < n; ++i) ps.cluster[i] = std::max(ps.cluster[i], 0);
   return clusters;
 }
 

@@ -12,10 +12,9 @@ namespace sc {
 using Clusters = std::vector<std::vector<std::size_t>>;
 
 /// Groups the rigid sand particles (ps.rigid) into clusters: two rigid particles belong to the same
-/// cluster when they are neighbours (|x_ij| ≤ max(h_i, h_j), the thesis' h' ≤ h): the connected
-/// components of the neighbour graph, found in parallel by joining trees whose roots are their
-/// smallest members. The clusters are in the order of their smallest members and list their
-/// members in increasing index order, whatever the number of threads. Writes ps.cluster (number + 1,
+/// cluster when they are neighbours (|x_ij| ≤ max(h_i, h_j), the thesis' h' ≤ h). Breadth-first
+/// search; seeds in increasing index order and neighbours in list order, so the clusters and the
+/// order of their members do not depend on the number of threads. Writes ps.cluster (number + 1,
 /// 0 for particles in no cluster).
 template <int D>
 Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb);
