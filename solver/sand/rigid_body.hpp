@@ -142,6 +142,7 @@ struct MotionSums {
   }
 };
 
+/// MotionSums of the members about `centre`.
 template <int D>
 MotionSums<D> motion_sums(std::span<const std::size_t> members, std::span<const double> m, const VecArrayOf<D>& x,
                           const VecArrayOf<D>& v, const VecArrayOf<D>& force, const Vec<D>& centre) {
