@@ -96,19 +96,30 @@ BOOST_AUTO_TEST_CASE(sorting_the_particles_only_relabels_the_lists) {
 }
 
 // A step re-bins only the particles that move (bin_moving) and keeps the walls' cells: its lists,
-// in their order, must be those of a full bin, after moves inside the grid, after a reorder and
-// after a move out of the walls' box that widens the grid.
+// in their order, must be those of a full bin, after moves inside the grid, after a reorder, after
+// a compaction that removed and added moving particles, after one that removed a wall, and after a
+// move out of the walls' box that widens the grid.
 BOOST_AUTO_TEST_CASE(rebinning_the_moving_particles_only_gives_the_lists_of_a_full_bin) {
   ParticleSet<3> ps = random_particles<3>(6, 3000, true);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> shift(-0.04, 0.04);
   NeighbourGrid<3> kept, full;
   kept.rebuild(ps);
-  for (int step = 0; step < 6; ++step) {
+  for (int step = 0; step < 7; ++step) {
     for (std::size_t i = 0; i < ps.size(); ++i)
       if (ps.moves(i))
         for (int d = 0; d < 3; ++d) ps.x[i][d] = std::clamp(ps.x[i][d] + shift(rng), 0.1, 0.9);  // inside the walls
     if (step == 2) ps.permute(kept.storage_order());
+    if (step == 3 || step == 5) {  // step 3: water removed and added (walls kept); step 5: a wall removed
+      std::size_t i = 0;
+      while (step == 3 ? !ps.moves(i) : !ps.inert(i)) ++i;
+      ps.queue_remove(i);
+      ParticleSet<3>& add = ps.additions();
+      const std::size_t k = add.append();
+      add.x[k] = Vec<3>(0.5, 0.5, 0.5);
+      add.h[k] = 0.1;
+      ps.compact();
+    }
     if (step == 4) ps.x[std::ranges::find(ps.phase, std::uint8_t(Phase::Water)) - ps.phase.begin()] = Vec<3>(1.3, 0.5, -0.2);
     kept.bin_moving(ps);
     kept.find_pairs(ps);

@@ -4,6 +4,7 @@
 // force and torque [thesis eq. 13] [thesis eq. 14], inertia [thesis eq. 17], τ = Iα
 // [thesis eq. 15] [thesis eq. 16], rigid velocity update [thesis eq. 18], frictional force
 // [thesis eq. 19], Bell contact and wall friction, clusters, rigid clusters against walls.
+#include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <numeric>
 #include <random>
@@ -579,6 +580,21 @@ BOOST_AUTO_TEST_CASE(clusters_by_breadth_first_search_in_stable_order) {
   BOOST_TEST(ps.cluster[10] == 0);
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (i != 10) BOOST_TEST(ps.cluster[i] == (ps.x[i][0] > 0.04 ? 2 : 1));
+  // An arch (∩) of rigid sand, its two legs 4 spacings apart (h = 2 spacings): the legs, seeded at
+  // indices 0 and 7 of the bottom row, meet only in the top rows, and make one cluster.
+  const int n = 10;
+  ParticleSet<2> arch = sand_lattice(n, 0.01);
+  std::size_t rigid = 0;
+  for (std::size_t i = 0; i < arch.size(); ++i) {
+    const std::size_t row = i / n, column = i % n;
+    arch.rigid[i] = row >= 8 || column <= 2 || column >= 7;
+    rigid += arch.rigid[i];
+  }
+  nb.rebuild(arch);
+  const Clusters one = find_clusters(arch, nb);
+  BOOST_TEST_REQUIRE(one.size() == 1u);
+  BOOST_TEST(one[0].size() == rigid);
+  BOOST_TEST(one[0].front() == 0u);
 }
 
 

@@ -90,32 +90,50 @@ std::uint64_t NeighbourGrid<D>::slot(const ParticleSet<D>& ps, std::size_t i) co
 }
 
 template <int D>
-void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
+void NeighbourGrid<D>::classify(const ParticleSet<D>& ps) {
   const std::size_t n = ps.size();
-  sorted_.resize(n + 1);
+  if (n >= UINT32_MAX) throw std::runtime_error("neighbour search: too many particles");
   layout_ = ps.layout();
+  sorted_.resize(n + 1);
+  slot_of_.resize(n);
   inert_.resize(n);
   moving_.clear();
   fixed_.clear();
-  if (n == 0) return;
-  if (n >= UINT32_MAX) throw std::runtime_error("neighbour search: too many particles");
   for (std::size_t i = 0; i < n; ++i) {
     inert_[i] = ps.inert(i);
     (inert_[i] ? fixed_ : moving_).push_back(static_cast<std::uint32_t>(i));
   }
+}
+
+template <int D>
+void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
+  classify(ps);
+  if (ps.size() == 0) return;
   fixed_bounds_ = bounds(ps, fixed_);
   set_grid(bounds(ps, moving_), fixed_bounds_);
-  slot_of_.resize(n);
-  const auto count = static_cast<std::int64_t>(n);
+  const auto count = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < count; ++i) slot_of_[i] = slot(ps, i);
+  fixed_id_.resize(fixed_.size());
+  fixed_slot_.resize(fixed_.size());
+  for (std::size_t k = 0; k < fixed_.size(); ++k) {
+    fixed_id_[k] = ps.id[fixed_[k]];
+    fixed_slot_[k] = slot_of_[fixed_[k]];
+  }
   sort_by_slot(ps);
   mark_cells_near_moving();
 }
 
 template <int D>
 void NeighbourGrid<D>::bin_moving(const ParticleSet<D>& ps) {
-  if (ps.layout() != layout_ || ps.size() != inert_.size() || ps.size() == 0) return bin(ps);
+  if (ps.size() == 0) return bin(ps);
+  if (ps.layout() != layout_) {
+    // Particles removed or added (ParticleSet::compact keeps the others' order) or reordered: the
+    // walls keep their cells if they are the same ones (ids) in the same order.
+    classify(ps);
+    if (!std::ranges::equal(fixed_, fixed_id_, {}, [&](std::uint32_t i) { return ps.id[i]; })) return bin(ps);
+    for (std::size_t k = 0; k < fixed_.size(); ++k) slot_of_[fixed_[k]] = fixed_slot_[k];
+  }
   if (set_grid(bounds(ps, moving_), fixed_bounds_)) return bin(ps);  // the walls' cells moved too
   const auto count = static_cast<std::int64_t>(moving_.size());
 #pragma omp parallel for schedule(static)

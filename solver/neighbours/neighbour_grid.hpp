@@ -33,8 +33,9 @@ class NeighbourGrid {
   /// Sorts the particles into cells; the lists are not valid until find_pairs.
   void bin(const ParticleSet<D>& particles);
   /// bin() for particles whose inert ones (ParticleSet::inert) are those of the last bin(), at the
-  /// same places and with the same supports: recomputes the cells of the others only. Falls back
-  /// to bin() if the particles were reordered, removed or added since (ParticleSet::layout).
+  /// same places and with the same supports: recomputes the cells of the others only. The inert
+  /// particles are recognised by their ids, in index order: after a compaction that removed or added
+  /// other particles they keep their cells; after a reorder (or any other change), bin() runs.
   void bin_moving(const ParticleSet<D>& particles);
   /// Builds the lists from the cells of the last bin() of the same particles.
   void find_pairs(const ParticleSet<D>& particles);
@@ -53,6 +54,8 @@ class NeighbourGrid {
  private:
   std::size_t append_neighbours(const ParticleSet<D>& ps, std::size_t i, std::vector<std::uint32_t>& out,
                                 std::size_t used) const;
+  /// inert_, moving_, fixed_ and the layout of the particles; sizes the per-particle arrays.
+  void classify(const ParticleSet<D>& ps);
   struct Bounds {
     std::array<double, D> lo, hi;
     double hmax;
@@ -78,7 +81,9 @@ class NeighbourGrid {
   std::vector<std::uint8_t> inert_;
   std::vector<std::uint32_t> moving_, fixed_;  // indices of the non-inert and of the inert particles
   Bounds fixed_bounds_{};                    // of the inert particles, at the last bin()
-  std::uint64_t layout_ = 0;                 // ParticleSet::layout at the last bin()
+  std::vector<std::int64_t> fixed_id_;       // ids of the inert particles at the last bin(), in index order
+  std::vector<std::uint64_t> fixed_slot_;    // and their slots
+  std::uint64_t layout_ = 0;                 // ParticleSet::layout at the last binning
   std::vector<std::uint8_t> near_moving_, spread_;  // per cell: a non-inert particle in the 3^D block (bin)
   // Candidates of the pair search in sorted_ order (with its padding), one array per coordinate
   // and one of squared supports, so that the distance test runs on two candidates at once.

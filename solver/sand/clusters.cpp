@@ -1,9 +1,17 @@
 #include "sand/clusters.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace sc {
+
+namespace {
+
+/// Members per chunk of the sums of cluster_motions.
+constexpr std::size_t kMembersPerChunk = 512;
+
+}  // namespace
 
 template <int D>
 Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb) {
@@ -36,10 +44,52 @@ Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb) {
 
 template <int D>
 std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt) {
+  // The members of every cluster in fixed chunks (the same at any number of threads), summed chunk
+  // by chunk in parallel and added in chunk order, so a large cluster is shared among the threads.
+  struct Chunk {
+    std::size_t cluster, first;
+  };
+  std::vector<Chunk> chunks;
+  std::vector<std::size_t> first_chunk(clusters.size() + 1);
+  for (std::size_t c = 0; c < clusters.size(); ++c) {
+    first_chunk[c] = chunks.size();
+    for (std::size_t f = 0; f < clusters[c].size(); f += kMembersPerChunk) chunks.push_back({c, f});
+  }
+  first_chunk[clusters.size()] = chunks.size();
+  auto members_of = [&](const Chunk& k) {
+    const std::span<const std::size_t> all(clusters[k.cluster]);
+    return all.subspan(k.first, std::min(kMembersPerChunk, all.size() - k.first));
+  };
+  auto add_chunks = [&](const auto& parts, std::size_t c) {
+    auto total = parts[first_chunk[c]];
+    for (std::size_t k = first_chunk[c] + 1; k < first_chunk[c + 1]; ++k) total += parts[k];
+    return total;
+  };
+  const auto nk = static_cast<std::int64_t>(chunks.size()), nc = static_cast<std::int64_t>(clusters.size());
+  std::vector<std::pair<double, Vec<D>>, Eigen::aligned_allocator<std::pair<double, Vec<D>>>> moments(chunks.size());
+  std::vector<MotionSums<D>, Eigen::aligned_allocator<MotionSums<D>>> sums(chunks.size());
   std::vector<ClusterMotion<D>> out(clusters.size());
-  const auto n = static_cast<std::int64_t>(clusters.size());
-#pragma omp parallel for schedule(dynamic)
-  for (std::int64_t c = 0; c < n; ++c) out[c] = rigid_motion<D>(clusters[c], ps.m, ps.x, ps.v, ps.force, dt);
+#pragma omp parallel
+  {
+#pragma omp for schedule(dynamic, 16)
+    for (std::int64_t k = 0; k < nk; ++k) moments[k] = mass_and_moment<D>(members_of(chunks[k]), ps.m, ps.x);
+#pragma omp for schedule(static)
+    for (std::int64_t c = 0; c < nc; ++c) {
+      auto [mass, first_moment] = moments[first_chunk[c]];
+      for (std::size_t k = first_chunk[c] + 1; k < first_chunk[c + 1]; ++k) {
+        mass += moments[k].first;
+        first_moment += moments[k].second;
+      }
+      out[c].mass = mass;
+      out[c].centre = first_moment / mass;
+    }
+#pragma omp for schedule(dynamic, 16)
+    for (std::int64_t k = 0; k < nk; ++k)
+      sums[k] = motion_sums<D>(members_of(chunks[k]), ps.m, ps.x, ps.v, ps.force, out[chunks[k].cluster].centre);
+#pragma omp for schedule(static)
+    for (std::int64_t c = 0; c < nc; ++c)
+      out[c] = motion_from_sums<D>(out[c].mass, out[c].centre, add_chunks(sums, c), dt, clusters[c].size() > 1);
+  }
   return out;
 }
 

@@ -53,17 +53,25 @@ struct ClusterMotion {
   AngVec<D> omega = AngVec<D>::Zero();     ///< ω = I⁻¹ L
 };
 
+/// Total mass and first mass moment Σ m x of the members.
+template <int D>
+std::pair<double, Vec<D>> mass_and_moment(std::span<const std::size_t> members, std::span<const double> m,
+                                          const VecArrayOf<D>& x) {
+  double M = 0.0;
+  Vec<D> s = Vec<D>::Zero();
+  for (const auto i : members) {
+    M += m[i];
+    s += m[i] * x[i];
+  }
+  return {M, s};
+}
+
 /// Total mass and centre of mass of the members.
 template <int D>
 std::pair<double, Vec<D>> mass_and_centre(std::span<const std::size_t> members, std::span<const double> m,
                                           const VecArrayOf<D>& x) {
-  double M = 0.0;
-  Vec<D> c = Vec<D>::Zero();
-  for (const auto i : members) {
-    M += m[i];
-    c += m[i] * x[i];
-  }
-  return {M, c / M};
+  const auto [M, s] = mass_and_moment<D>(members, m, x);
+  return {M, s / M};
 }
 
 /// Cluster force [thesis eq. 13]: F_cluster = Σ_{i ∈ cluster} F_i. Correct as printed.
@@ -113,8 +121,44 @@ AngVec<D> solve_inertia(const AngMat<D>& I, const AngVec<D>& b, double rel_tol =
   return es.eigenvectors() * coeffs;
 }
 
+/// The sums over the members of a cluster (or a part of one) about the centre r_cm that its rigid
+/// motion needs: Σ m_j v_j, Σ m_j r'_j × v_j, F_cluster [thesis eq. 13], τ_cluster [thesis eq. 14]
+/// and I [thesis eq. 17]; the sums of disjoint parts add up.
+template <int D>
+struct MotionSums {
+  Vec<D> momentum = Vec<D>::Zero();
+  AngVec<D> angular_momentum = AngVec<D>::Zero();
+  Vec<D> force = Vec<D>::Zero();
+  AngVec<D> torque = AngVec<D>::Zero();
+  AngMat<D> inertia = AngMat<D>::Zero();
+
+  MotionSums& operator+=(const MotionSums& o) {
+    momentum += o.momentum;
+    angular_momentum += o.angular_momentum;
+    force += o.force;
+    torque += o.torque;
+    inertia += o.inertia;
+    return *this;
+  }
+};
+
+/// MotionSums of the members about `centre`.
+template <int D>
+MotionSums<D> motion_sums(std::span<const std::size_t> members, std::span<const double> m, const VecArrayOf<D>& x,
+                          const VecArrayOf<D>& v, const VecArrayOf<D>& force, const Vec<D>& centre) {
+  MotionSums<D> s;
+  for (const auto j : members) {
+    s.momentum += m[j] * v[j];
+    s.angular_momentum += moment<D>(x[j] - centre, m[j] * v[j]);
+  }
+  s.force = cluster_force<D>(members, force);
+  s.torque = cluster_torque<D>(members, x, centre, force);
+  s.inertia = inertia_tensor<D>(members, m, x, centre);
+  return s;
+}
+
 /// Rigid motion of a cluster after one step [thesis eq. 15], [thesis eq. 16], [thesis eq. 18]
-/// (corrected form of EQUATIONS.md 15-18):
+/// (corrected form of EQUATIONS.md 15-18), from its mass M, centre and motion_sums:
 ///   P = Σ m_j v_j + F_cluster Δt,  L = Σ m_j r'_j × v_j + τ_cluster Δt,  v_cm = P/M,  ω = I⁻¹ L,
 /// from the velocities and forces at the start of the step. Errata: eqs 15-16 drop the gyroscopic
 /// term ω × Iω and the time dependence of I; updating L (not ω) keeps them (angular momentum is
@@ -122,22 +166,26 @@ AngVec<D> solve_inertia(const AngMat<D>& I, const AngVec<D>& b, double rel_tol =
 /// (N_cluster times too large; it must be the cluster mass M) and adds increments to each particle's
 /// old velocity, which never makes a new cluster rigid; here every member gets v_cm + ω × r'
 /// (apply_rigid_velocity). The cross-product order (α Δt) × r' of the thesis is right.
+/// `spins`: false for one particle, whose I and L are round-off about its own centre.
+template <int D>
+ClusterMotion<D> motion_from_sums(double mass, const Vec<D>& centre, const MotionSums<D>& s, double dt, bool spins) {
+  ClusterMotion<D> c;
+  c.mass = mass;
+  c.centre = centre;
+  c.momentum = s.momentum + dt * s.force;
+  c.angular_momentum = s.angular_momentum + dt * s.torque;
+  c.inertia = s.inertia;
+  c.velocity = c.momentum / c.mass;
+  if (spins) c.omega = solve_inertia<D>(c.inertia, c.angular_momentum);
+  return c;
+}
+
+/// motion_from_sums of the members [thesis eq. 15], [thesis eq. 16], [thesis eq. 18].
 template <int D>
 ClusterMotion<D> rigid_motion(std::span<const std::size_t> members, std::span<const double> m,
                               const VecArrayOf<D>& x, const VecArrayOf<D>& v, const VecArrayOf<D>& force, double dt) {
-  ClusterMotion<D> c;
-  std::tie(c.mass, c.centre) = mass_and_centre<D>(members, m, x);
-  for (const auto j : members) {
-    c.momentum += m[j] * v[j];
-    c.angular_momentum += moment<D>(x[j] - c.centre, m[j] * v[j]);
-  }
-  c.momentum += dt * cluster_force<D>(members, force);
-  c.angular_momentum += dt * cluster_torque<D>(members, x, c.centre, force);
-  c.inertia = inertia_tensor<D>(members, m, x, c.centre);
-  c.velocity = c.momentum / c.mass;
-  // One particle has no rotational inertia: its I and L are round-off about its own centre.
-  if (members.size() > 1) c.omega = solve_inertia<D>(c.inertia, c.angular_momentum);
-  return c;
+  const auto [mass, centre] = mass_and_centre<D>(members, m, x);
+  return motion_from_sums<D>(mass, centre, motion_sums<D>(members, m, x, v, force, centre), dt, members.size() > 1);
 }
 
 /// Velocity of a member at x in the rigid motion c: v_cm + ω × (x − r_cm) [thesis eq. 18], corrected.
