@@ -111,6 +111,7 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
   if (ps.size() == 0) return;
   fixed_bounds_ = bounds(ps, fixed_);
   set_grid(bounds(ps, moving_), fixed_bounds_);
+  binned_ = true;
   const auto count = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < count; ++i) slot_of_[i] = slot(ps, i);
@@ -126,7 +127,9 @@ void NeighbourGrid<D>::bin(const ParticleSet<D>& ps) {
 
 template <int D>
 void NeighbourGrid<D>::bin_moving(const ParticleSet<D>& ps) {
-  if (ps.size() == 0) return bin(ps);
+  // A new grid (e.g. of a run resumed from a checkpoint, whose set may carry the same layout
+  // count) has no walls cached yet.
+  if (ps.size() == 0 || !binned_) return bin(ps);
   if (ps.layout() != layout_) {
     // Particles removed or added (ParticleSet::compact keeps the others' order) or reordered: the
     // walls keep their cells if they are the same ones (ids) in the same order.

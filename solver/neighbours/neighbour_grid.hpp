@@ -84,6 +84,7 @@ class NeighbourGrid {
   std::vector<std::int64_t> fixed_id_;       // ids of the inert particles at the last bin(), in index order
   std::vector<std::uint64_t> fixed_slot_;    // and their slots
   std::uint64_t layout_ = 0;                 // ParticleSet::layout at the last binning
+  bool binned_ = false;                      // bin() has run: the walls' cache is valid
   std::vector<std::uint8_t> near_moving_, spread_;  // per cell: a non-inert particle in the 3^D block (bin)
   // Candidates of the pair search in sorted_ order (with its padding), one array per coordinate
   // and one of squared supports, so that the distance test runs on two candidates at once.
