@@ -34,10 +34,6 @@ struct Body {
     const AngVec<D> rt = moment<D>(arm, t);
     return inv_mass + rt.dot(inv_inertia * rt);
   }
-  /// The largest change of a point velocity within `reach` of the centre since `other`: |Δv| + |Δω| reach.
-  double speed_change(const Body& other, double reach) const {
-    return (v - other.v).norm() + (omega - other.omega).norm() * reach;
-  }
   void apply(const Vec<D>& arm, const Vec<D>& impulse) {
     v += inv_mass * impulse;
     omega += inv_inertia * moment<D>(arm, impulse);
@@ -45,9 +41,9 @@ struct Body {
 };
 
 /// Coulomb friction impulse of one contact: the impulse that stops its tangential velocity,
-/// added to the accumulated one and clamped to the cone |λ_t| ≤ μ λ_n, and applied to the body.
+/// added to the accumulated one and clamped to the cone |λ_t| ≤ μ λ_n; returns the change applied.
 template <int D>
-void friction_step(Body<D>& body, const WallContact<D>& c, Vec<D>& accumulated, double limit) {
+Vec<D> friction_step(Body<D>& body, const WallContact<D>& c, Vec<D>& accumulated, double limit) {
   const Vec<D> u = body.point_velocity(c.arm);
   const Vec<D> ut = u - u.dot(c.normal) * c.normal;
   const double speed = ut.norm();
@@ -58,37 +54,18 @@ void friction_step(Body<D>& body, const WallContact<D>& c, Vec<D>& accumulated, 
   const Vec<D> change = target - accumulated;
   accumulated = target;
   body.apply(c.arm, change);
+  return change;
 }
 
-/// The sweeps' data of one contact: what stays fixed over the sweeps (its allowed normal velocity
-/// −max(g, 0)/Δt, the moment r × n of a unit normal impulse, the spin I⁻¹ (r × n) it gives and its
-/// effective mass 1/(1/M + (r × n)ᵀ I⁻¹ (r × n))) and its accumulated normal and friction impulses.
+/// The sweeps' data of one contact: its allowed normal velocity −max(g, 0)/Δt and normal inverse
+/// effective mass (fixed over the sweeps), and its accumulated normal and friction impulses.
 template <int D>
 struct ContactRow {
   double allowed;
-  AngVec<D> moment;
-  AngVec<D> turn;
-  double effective_mass;
-  double normal = 0.0;
-  Vec<D> friction = Vec<D>::Zero();
-
-  ContactRow(const Body<D>& body, const WallContact<D>& c, double dt)
-      : allowed(-std::max(c.gap, 0.0) / dt), moment(sc::moment<D>(c.arm, c.normal)), turn(body.inv_inertia * moment),
-        effective_mass(1.0 / (body.inv_mass + moment.dot(turn))) {}
+  double normal_inv_mass;
+  double normal;
+  Vec<D> friction;
 };
-
-/// The normal impulse of one contact: the one that brings its normal velocity u·n = n·v + (r × n)·ω
-/// to the allowed one, added to the accumulated one, clamped at zero (a wall only pushes) and
-/// applied to the body.
-template <int D>
-void normal_step(Body<D>& body, const WallContact<D>& c, ContactRow<D>& row) {
-  const double un = c.normal.dot(body.v) + row.moment.dot(body.omega);
-  const double lambda = std::max(0.0, row.normal + (row.allowed - un) * row.effective_mass);
-  const double change = lambda - row.normal;
-  body.v += (body.inv_mass * change) * c.normal;
-  body.omega += change * row.turn;
-  row.normal = lambda;
-}
 
 /// Contacts whose gap a member cannot close within the step at this many times the largest point
 /// speed of the cluster's unconstrained motion are left out of the sweeps: their impulse would stay
@@ -128,41 +105,6 @@ void append_cluster_wall_contacts(const ParticleSet<D>& ps, const NeighbourGrid<
   }
 }
 
-/// Clusters of at least this many members are gathered by chunks of kChunk members in parallel
-/// (fixed chunks: the same contacts in the same order at any number of threads).
-constexpr std::size_t kLargeCluster = 2048;
-constexpr std::size_t kChunk = 512;
-
-/// largest_point_speed of a large cluster, its members shared among the threads (a maximum:
-/// exact in any order).
-template <int D>
-double largest_point_speed_in_parallel(const ParticleSet<D>& ps, std::span<const std::size_t> members,
-                                       const ClusterMotion<D>& motion) {
-  double arm = 0.0;
-  const auto n = static_cast<std::int64_t>(members.size());
-#pragma omp parallel for schedule(static) reduction(max : arm)
-  for (std::int64_t k = 0; k < n; ++k) arm = std::max(arm, (ps.x[members[k]] - motion.centre).norm());
-  return motion.velocity.norm() + motion.omega.norm() * arm;
-}
-
-/// cluster_wall_contacts of a large cluster into `out`: chunks of members in parallel, joined in
-/// member order.
-template <int D>
-void gather_wall_contacts_in_parallel(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
-                                      std::span<const std::size_t> members, const Vec<D>& centre, double max_gap,
-                                      std::vector<WallContact<D>>& out) {
-  const std::size_t chunks = (members.size() + kChunk - 1) / kChunk;
-  std::vector<std::vector<WallContact<D>>> parts(chunks);
-#pragma omp parallel for schedule(dynamic)
-  for (std::int64_t k = 0; k < static_cast<std::int64_t>(chunks); ++k) {
-    const std::size_t first = static_cast<std::size_t>(k) * kChunk;
-    append_cluster_wall_contacts<D>(ps, nb, members.subspan(first, std::min(kChunk, members.size() - first)), centre,
-                                    max_gap, parts[k]);
-  }
-  out.clear();
-  for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
-}
-
 }  // namespace
 
 template <int D>
@@ -182,21 +124,25 @@ ContactImpulse<D> resolve_wall_contacts(ClusterMotion<D>& motion, std::span<cons
   Body<D> body{1.0 / motion.mass, inverse_inertia<D>(motion.inertia, spins), motion.velocity, motion.omega};
   // What stays fixed over the sweeps is set once; the buffer is kept between calls (per thread).
   thread_local std::vector<ContactRow<D>, Eigen::aligned_allocator<ContactRow<D>>> rows;
-  rows.clear();
-  for (const auto& c : contacts) rows.emplace_back(body, c, dt);
-  double reach = 0.0;
-  for (const auto& c : contacts) reach = std::max(reach, c.arm.norm());
-  const Body<D> start = body;
+  rows.resize(contacts.size());
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+    rows[k] = {-std::max(contacts[k].gap, 0.0) / dt, body.inv_effective_mass(contacts[k].arm, contacts[k].normal), 0.0,
+               Vec<D>::Zero()};
   for (int sweep = 0; sweep < max_sweeps; ++sweep) {
-    const Body<D> before = body;
+    double largest = 0.0, change = 0.0;
     for (std::size_t k = 0; k < contacts.size(); ++k) {
       const WallContact<D>& c = contacts[k];
       ContactRow<D>& row = rows[k];
-      normal_step<D>(body, c, row);
-      if (c.rough && mu > 0.0) friction_step<D>(body, c, row.friction, mu * row.normal);
+      const double un = body.point_velocity(c.arm).dot(c.normal);
+      const double lambda = std::max(0.0, row.normal + (row.allowed - un) / row.normal_inv_mass);
+      body.apply(c.arm, (lambda - row.normal) * c.normal);
+      change = std::max(change, std::abs(lambda - row.normal));
+      row.normal = lambda;
+      if (c.rough && mu > 0.0) change = std::max(change, friction_step<D>(body, c, row.friction, mu * lambda).norm());
+      largest = std::max(largest, lambda);
     }
     total.iterations = sweep + 1;
-    if (body.speed_change(before, reach) <= tolerance * body.speed_change(start, reach)) break;
+    if (change <= tolerance * largest) break;
   }
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const double normal = rows[k].normal;
@@ -216,26 +162,16 @@ void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D
                                  std::span<const std::vector<std::size_t>> clusters,
                                  std::vector<ClusterMotion<D>>& motions, double dt, double mu) {
   const auto n = static_cast<std::int64_t>(clusters.size());
-  // Small clusters: one thread each.
 #pragma omp parallel
   {
     std::vector<WallContact<D>> contacts;  // kept over this thread's clusters
 #pragma omp for schedule(dynamic)
     for (std::int64_t c = 0; c < n; ++c) {
-      if (clusters[c].size() >= kLargeCluster) continue;
       const double reach = kContactReachFactor * largest_point_speed<D>(ps, clusters[c], motions[c]) * dt;
       contacts.clear();
       append_cluster_wall_contacts<D>(ps, nb, clusters[c], motions[c].centre, reach, contacts);
       resolve_wall_contacts<D>(motions[c], contacts, clusters[c].size() > 1, dt, mu);
     }
-  }
-  // Large clusters one after the other: their members shared among the threads, the sweeps on one.
-  std::vector<WallContact<D>> contacts;
-  for (std::int64_t c = 0; c < n; ++c) {
-    if (clusters[c].size() < kLargeCluster) continue;
-    const double reach = kContactReachFactor * largest_point_speed_in_parallel<D>(ps, clusters[c], motions[c]) * dt;
-    gather_wall_contacts_in_parallel<D>(ps, nb, clusters[c], motions[c].centre, reach, contacts);
-    resolve_wall_contacts<D>(motions[c], contacts, true, dt, mu);
   }
 }
 

@@ -56,12 +56,8 @@ struct ContactImpulse {
 /// also takes a friction impulse against its tangential velocity, bounded by Coulomb's cone
 /// |λ_t| ≤ μ λ_n (Zhu & Bridson's frictional boundary condition at the impulse level). The
 /// impulses of many contacts on one body are found by projected Gauss-Seidel sweeps (sequential
-/// impulses: each contact in turn, clamped accumulated impulses) until a sweep changes the body's
-/// motion, measured as the largest change |Δv| + |Δω| r_max of a contact point's velocity, by at
-/// most `tolerance` times the change of all sweeps so far, or `max_sweeps`. It stops on the motion,
-/// not on the impulses: with more contacts than the body has degrees of freedom (337 under the
-/// thesis_duck) the impulses are not unique, and they kept trading load between contacts (changes
-/// near 5e-3 of the largest after 200 sweeps) long after the motion had converged. The walls are fixed, so
+/// impulses: each contact in turn, clamped accumulated impulses) until no impulse changes by more
+/// than `tolerance` times the largest accumulated one, or `max_sweeps`. The walls are fixed, so
 /// the impulses change the cluster's momentum and angular momentum (motion.momentum,
 /// motion.angular_momentum, motion.velocity, motion.omega); they only remove kinetic energy.
 /// `spins`: whether the body can rotate (false for a single particle, as in rigid_motion).
@@ -70,8 +66,7 @@ ContactImpulse<D> resolve_wall_contacts(ClusterMotion<D>& motion, std::span<cons
                                         double dt, double mu, double tolerance = 1e-10, int max_sweeps = 200);
 
 /// resolve_wall_contacts for every cluster (parallel over clusters; each writes only its motion),
-/// with the Coulomb coefficient mu of rough walls. The contacts of a large cluster are gathered by
-/// all threads (fixed chunks of members, joined in member order), its sweeps run on one.
+/// with the Coulomb coefficient mu of rough walls.
 template <int D>
 void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
                                  std::span<const std::vector<std::size_t>> clusters,
