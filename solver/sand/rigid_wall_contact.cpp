@@ -74,11 +74,20 @@ struct ContactRow {
 /// tens of thousands of them, and the thesis_duck step took 54 ms more.
 constexpr double kContactReachFactor = 2.0;
 
+/// Clusters of at least this many members have their contacts gathered by chunks of kChunk
+/// members in parallel (fixed chunks joined in member order: the same contacts in the same order at
+/// any number of threads); smaller clusters are gathered one per thread.
+constexpr std::int64_t kLargeCluster = 2048;
+constexpr std::size_t kChunk = 512;
+
 /// The largest speed |v_cm| + |ω| |r| of a member of the cluster in its (unconstrained) motion.
 template <int D>
 double largest_point_speed(const ParticleSet<D>& ps, std::span<const std::size_t> members, const ClusterMotion<D>& motion) {
   double arm = 0.0;
-  for (const auto i : members) arm = std::max(arm, (ps.x[i] - motion.centre).norm());
+  const auto n = static_cast<std::int64_t>(members.size());
+  // A maximum: exact in any order, so the threads share only a large cluster's members.
+#pragma omp parallel for schedule(static) reduction(max : arm) if (n >= kLargeCluster)
+  for (std::int64_t k = 0; k < n; ++k) arm = std::max(arm, (ps.x[members[k]] - motion.centre).norm());
   return motion.velocity.norm() + motion.omega.norm() * arm;
 }
 
@@ -105,6 +114,24 @@ void append_cluster_wall_contacts(const ParticleSet<D>& ps, const NeighbourGrid<
   }
 }
 
+
+/// append_cluster_wall_contacts of a large cluster into `out` (cleared first): chunks of members in
+/// parallel, joined in member order.
+template <int D>
+void gather_wall_contacts_in_parallel(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
+                                      std::span<const std::size_t> members, const Vec<D>& centre, double max_gap,
+                                      std::vector<WallContact<D>>& out) {
+  const std::size_t chunks = (members.size() + kChunk - 1) / kChunk;
+  std::vector<std::vector<WallContact<D>>> parts(chunks);
+#pragma omp parallel for schedule(dynamic)
+  for (std::int64_t k = 0; k < static_cast<std::int64_t>(chunks); ++k) {
+    const std::size_t first = static_cast<std::size_t>(k) * kChunk;
+    append_cluster_wall_contacts<D>(ps, nb, members.subspan(first, std::min(kChunk, members.size() - first)), centre,
+                                    max_gap, parts[k]);
+  }
+  out.clear();
+  for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
+}
 }  // namespace
 
 template <int D>
@@ -167,11 +194,20 @@ void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D
     std::vector<WallContact<D>> contacts;  // kept over this thread's clusters
 #pragma omp for schedule(dynamic)
     for (std::int64_t c = 0; c < n; ++c) {
+      if (std::ssize(clusters[c]) >= kLargeCluster) continue;
       const double reach = kContactReachFactor * largest_point_speed<D>(ps, clusters[c], motions[c]) * dt;
       contacts.clear();
       append_cluster_wall_contacts<D>(ps, nb, clusters[c], motions[c].centre, reach, contacts);
       resolve_wall_contacts<D>(motions[c], contacts, clusters[c].size() > 1, dt, mu);
     }
+  }
+  // Large clusters one after the other: their members shared among the threads, the sweeps on one.
+  std::vector<WallContact<D>> contacts;
+  for (std::int64_t c = 0; c < n; ++c) {
+    if (std::ssize(clusters[c]) < kLargeCluster) continue;
+    const double reach = kContactReachFactor * largest_point_speed<D>(ps, clusters[c], motions[c]) * dt;
+    gather_wall_contacts_in_parallel<D>(ps, nb, clusters[c], motions[c].centre, reach, contacts);
+    resolve_wall_contacts<D>(motions[c], contacts, true, dt, mu);
   }
 }
 
