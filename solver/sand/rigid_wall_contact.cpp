@@ -34,6 +34,11 @@ struct Body {
     const AngVec<D> rt = moment<D>(arm, t);
     return inv_mass + rt.dot(inv_inertia * rt);
   }
+  /// The largest change of a member's velocity from the body's motion `other` to this one, for
+  /// members at most `reach` from the centre: |Δv| + |Δω| reach [m/s].
+  double point_speed_change(const Body& other, double reach) const {
+    return (v - other.v).norm() + (omega - other.omega).norm() * reach;
+  }
   void apply(const Vec<D>& arm, const Vec<D>& impulse) {
     v += inv_mass * impulse;
     omega += inv_inertia * moment<D>(arm, impulse);
@@ -41,9 +46,9 @@ struct Body {
 };
 
 /// Coulomb friction impulse of one contact: the impulse that stops its tangential velocity,
-/// added to the accumulated one and clamped to the cone |λ_t| ≤ μ λ_n; returns the change applied.
+/// added to the accumulated one and clamped to the cone |λ_t| ≤ μ λ_n, and applied to the body.
 template <int D>
-Vec<D> friction_step(Body<D>& body, const WallContact<D>& c, Vec<D>& accumulated, double limit) {
+void friction_step(Body<D>& body, const WallContact<D>& c, Vec<D>& accumulated, double limit) {
   const Vec<D> u = body.point_velocity(c.arm);
   const Vec<D> ut = u - u.dot(c.normal) * c.normal;
   const double speed = ut.norm();
@@ -54,7 +59,6 @@ Vec<D> friction_step(Body<D>& body, const WallContact<D>& c, Vec<D>& accumulated
   const Vec<D> change = target - accumulated;
   accumulated = target;
   body.apply(c.arm, change);
-  return change;
 }
 
 /// The sweeps' data of one contact: its allowed normal velocity −max(g, 0)/Δt and normal inverse
@@ -155,21 +159,22 @@ ContactImpulse<D> resolve_wall_contacts(ClusterMotion<D>& motion, std::span<cons
   for (std::size_t k = 0; k < contacts.size(); ++k)
     rows[k] = {-std::max(contacts[k].gap, 0.0) / dt, body.inv_effective_mass(contacts[k].arm, contacts[k].normal), 0.0,
                Vec<D>::Zero()};
+  double reach = 0.0;
+  for (const auto& c : contacts) reach = std::max(reach, c.arm.norm());
+  const Body<D> start = body;
   for (int sweep = 0; sweep < max_sweeps; ++sweep) {
-    double largest = 0.0, change = 0.0;
+    const Body<D> before = body;
     for (std::size_t k = 0; k < contacts.size(); ++k) {
       const WallContact<D>& c = contacts[k];
       ContactRow<D>& row = rows[k];
       const double un = body.point_velocity(c.arm).dot(c.normal);
       const double lambda = std::max(0.0, row.normal + (row.allowed - un) / row.normal_inv_mass);
       body.apply(c.arm, (lambda - row.normal) * c.normal);
-      change = std::max(change, std::abs(lambda - row.normal));
       row.normal = lambda;
-      if (c.rough && mu > 0.0) change = std::max(change, friction_step<D>(body, c, row.friction, mu * lambda).norm());
-      largest = std::max(largest, lambda);
+      if (c.rough && mu > 0.0) friction_step<D>(body, c, row.friction, mu * lambda);
     }
     total.iterations = sweep + 1;
-    if (change <= tolerance * largest) break;
+    if (body.point_speed_change(before, reach) <= tolerance * body.point_speed_change(start, reach)) break;
   }
   for (std::size_t k = 0; k < contacts.size(); ++k) {
     const double normal = rows[k].normal;
