@@ -20,8 +20,9 @@
 // below one spacing of water head (a seepage face: water leaves into air only where its pressure
 // reaches the atmosphere's, ours [I]) sends the flow a full lattice half-space would take,
 // S^β m_p |v_p| / s, into its emission store; once the store holds `create_fraction` of a full
-// water particle, a water particle is created there (placed away from all particles, including
-// those created earlier in the same step). Stores flow back into m_p while not exposed.
+// water particle, a water particle of at most a full particle's mass is created there (placed
+// away from all particles, including those created earlier in the same step; the rest of a larger
+// store waits for the next free target). Stores flow back into m_p while not exposed.
 //
 // Determinism: every loop over particles is a gather that writes only its own entries; pair
 // flows are computed identically by both particles; deletions and creations are queued serially
