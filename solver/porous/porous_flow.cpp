@@ -62,16 +62,26 @@ void mark_participant(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, cons
 /// Darcy flow through it would be driven by gravity alone (q = K whatever the pond depth). In a
 /// rigid saturated skeleton the pore water is incompressible and its pressure is what keeps the
 /// flow divergence-free (solve_harmonic_pressure). The conditions:
-/// - in contact with free water (a water neighbour): the pond's pressure (pond_pressure: the
-///   weight of the water columns next to it, carried to it hydrostatically);
-/// - at a seepage face (empty space below or along v_p, exposure): the atmosphere's, 0;
-/// - unsaturated (S < kSaturated): 0, the pore water being at the capillary suction −P^c (eq 23);
+/// - in contact with free water (a water neighbour): pore-water pressure P^p − P^c = the pond's
+///   pressure (set_contact_pressure);
+/// - at a seepage face (empty space below or along v_p, exposure): P^p = 0, the atmosphere's;
+/// - unsaturated: P^p = 0, the pore water being at the capillary suction −P^c (eq 23);
 /// - moving (deformable) sand: Lenaerts' eq 25;
 /// - saturated, fixed, none of the above: harmonic, solved.
+/// Saturated means that the particle held at least kSaturated of its pores' capacity while it
+/// passed this step's outflow on: m_p after the step plus that outflow, i.e. m_p before it plus the
+/// step's inflow. A particle in the wet zone of a flow passes |v_p| Δt / dx of its pores per step,
+/// and the explicit limited update (eqs 28′-30) leaves it about that much short of full at the
+/// end of the step; counted by its content after the step, the wet zone turned "unsaturated"
+/// wherever that exceeded 1 − kSaturated (pore velocity 0.4 m/s at Δt = 2.5e-4 s and dx = 5 mm:
+/// 2 %), its pressure was set to 0 there, the pond's pressure no longer reached the front and
+/// the error grew with refinement at a fixed step (green_ampt: 4.5 % at dx = 10 mm, 15 % at 5 mm;
+/// tests/test_porous.cpp pins it). A draining particle still turns unsaturated: its inflow does
+/// not make up what it loses.
 template <int D>
 PressureRole pressure_role(const ParticleSet<D>& ps, const PorousWork<D>& w, std::size_t i) {
   if (!w.porous[i]) return PressureRole::None;
-  const bool saturated = ps.absorbed[i] + ps.emit_store[i] >= kSaturated * w.slot[i].capacity;
+  const bool saturated = ps.absorbed[i] + ps.emit_store[i] + w.passed[i] >= kSaturated * w.slot[i].capacity;
   const bool solved = ps.phase_of(i) == Phase::Boundary && !w.contact[i] && !w.seepage[i] && saturated;
   return solved ? PressureRole::Unknown : PressureRole::Prescribed;
 }
@@ -147,7 +157,12 @@ bool prepare_participants(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const 
   return fixed_contact;
 }
 
-/// The pond's pressure at fixed porous particles in contact with water (pressure_role).
+/// The pond's pressure at fixed porous particles in contact with water (pressure_role): their
+/// pore-water pressure P^p − P^c of [thesis eq. 27] is the pressure of the free water next to them
+/// (pond_pressure: the weight of the water columns, carried to them hydrostatically), so
+/// P^p = pond + P^c (P^c of [thesis eq. 23], with α = 0.1 still ~0.55 k^c at the S ≈ 0.997 a
+/// flowing wet zone keeps). Giving P^p the pond's pressure alone took P^c off the pond's drive
+/// at the surface.
 template <int D>
 void set_contact_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
                           const PorousWork<D>& w) {
@@ -156,7 +171,7 @@ void set_contact_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const 
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i)
     if (w.contact[i] && ps.phase_of(i) == Phase::Boundary)
-      ps.pore_pressure[i] = pond_pressure(ps, nb, column, i, p.fluid_density, g);
+      ps.pore_pressure[i] = pond_pressure(ps, nb, column, i, p.fluid_density, g) + ps.capillary[i];
 }
 
 /// Pore velocity (eq 27) of porous particles from the gradients (eq 22) of the capillary potential
@@ -309,6 +324,7 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
         ++k;
       }
     const double m = euler_mass(w.slot[i].mass, in, out, dt);
+    w.passed[i] = dt * out;
     if (w.porous[i]) {
       ps.absorbed[i] = m;
       ps.emit_store[i] += dt * w.ghost[i] * w.a[i];
@@ -318,7 +334,20 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
   }
 }
 
-/// Pore-water pressure of fixed porous particles for the next step (pressure_role).
+/// Capillary potential P^c [thesis eq. 23] that the next step's pore velocity will see at i: that of
+/// the saturation after this step for fixed porous particles off the pond (fill_slot computes it so),
+/// this step's for the others (the pond contact's P^p = pond + P^c was set with it). The suction of
+/// solve_harmonic_pressure.
+template <int D>
+double suction_after_step(const ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w, std::size_t i) {
+  if (!w.porous[i]) return 0.0;
+  if (ps.phase_of(i) != Phase::Boundary || w.contact[i]) return ps.capillary[i];
+  const double S = saturation(ps.absorbed[i], p.fluid_density, p.porosity, std::pow(p.spacing, D));
+  return capillary_potential(S, p.capillary_constant, p.capillary_exponent);
+}
+
+/// Pore-water pressure of fixed porous particles for the next step (pressure_role): prescribed
+/// values, then the saturated rigid zone solved for its pore-water pressure P^p − P^c.
 template <int D>
 void update_rigid_pore_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
                                 PorousWork<D>& w) {
@@ -332,7 +361,10 @@ void update_rigid_pore_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, 
     if (w.role[i] == PressureRole::Prescribed && ps.phase_of(i) == Phase::Boundary && !w.contact[i])
       ps.pore_pressure[i] = 0.0;
   }
-  if (unknowns) solve_harmonic_pressure(ps, nb, w.role, p.fluid_density, g, ps.pore_pressure);
+  if (!unknowns) return;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) w.suction[i] = suction_after_step(ps, p, w, i);
+  solve_harmonic_pressure(ps, nb, w.role, w.suction, p.fluid_density, g, ps.pore_pressure);
 }
 
 /// The literal eq 28 (switch "lenaerts_literal"): each particle integrates its own rate and is
@@ -433,7 +465,7 @@ PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
   const std::size_t n = ps.size();
   w.slot.resize(n);
   for (auto* v : {&w.part, &w.porous, &w.exposed, &w.placeable, &w.seepage, &w.contact, &w.flowing}) v->resize(n);
-  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b, &w.relaxed, &w.spacing}) v->resize(n);
+  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b, &w.relaxed, &w.spacing, &w.passed, &w.suction}) v->resize(n);
   w.target.resize(n);
   if (prepare_participants(ps, nb, params, gravity, dt, w)) set_contact_pressure(ps, nb, params, gravity, w);
   pore_velocities(ps, nb, params, gravity, w);

@@ -62,9 +62,10 @@ double pond_pressure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const
 
 template <int D>
 void solve_harmonic_pressure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
-                             const std::vector<PressureRole>& role, double fluid_density, const Vec<D>& gravity,
-                             std::vector<double>& P) {
-  auto head = [&](std::size_t i) { return fluid_density * gravity.dot(ps.x[i]); };  // Φ = P − head
+                             const std::vector<PressureRole>& role, const std::vector<double>& suction,
+                             double fluid_density, const Vec<D>& gravity, std::vector<double>& P) {
+  // Φ = P − head, head = ρ^f g·x + P^c: the piezometric pore-water pressure
+  auto head = [&](std::size_t i) { return fluid_density * gravity.dot(ps.x[i]) + suction[i]; };
   std::vector<long> index(ps.size(), -1);
   long unknowns = 0;
   for (std::size_t i = 0; i < ps.size(); ++i)
@@ -106,8 +107,8 @@ template double pond_pressure<2>(const ParticleSet<2>&, const NeighbourGrid<2>&,
 template double pond_pressure<3>(const ParticleSet<3>&, const NeighbourGrid<3>&, const std::vector<double>&, std::size_t,
                                  double, const Vec<3>&);
 template void solve_harmonic_pressure<2>(const ParticleSet<2>&, const NeighbourGrid<2>&, const std::vector<PressureRole>&,
-                                         double, const Vec<2>&, std::vector<double>&);
+                                         const std::vector<double>&, double, const Vec<2>&, std::vector<double>&);
 template void solve_harmonic_pressure<3>(const ParticleSet<3>&, const NeighbourGrid<3>&, const std::vector<PressureRole>&,
-                                         double, const Vec<3>&, std::vector<double>&);
+                                         const std::vector<double>&, double, const Vec<3>&, std::vector<double>&);
 
 }  // namespace sc

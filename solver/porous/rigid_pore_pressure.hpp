@@ -18,9 +18,14 @@ enum class PressureRole : std::uint8_t {
 /// Solves for P at the particles with role Unknown, the others with role Prescribed holding their
 /// value in `P` (a Dirichlet condition), particles with role None being absent (no flow across).
 /// Why: in a rigid saturated skeleton with homogeneous permeability the pore water is
-/// incompressible, so the Darcy flux of [thesis eq. 26], q = −(k/μ)∇Φ with the piezometric
-/// pressure Φ = P − ρ^f g·x, is divergence-free: ∇²Φ = 0 (P is linear along a permeameter), and
+/// incompressible, so the Darcy flux of [thesis eq. 27] (eq 26 / φ), v_p ∝ −∇Φ with the
+/// piezometric pore-water pressure Φ = P − P^c − ρ^f g·x (P^c = `suction`, the capillary potential
+/// of [thesis eq. 23]), is divergence-free: ∇²Φ = 0 (P − P^c is linear along a permeameter), and
 /// an absent neighbour is a no-flow side, ∂Φ/∂n = 0 (at a floor: ∂P/∂z = −ρ^f g, hydrostatic).
+/// P^c enters because the flux answers to P^p − P^c, not to P^p: at a wetting front the
+/// unsaturated particles hold P = 0, i.e. pore water at −P^c, and that suction drives the whole
+/// wet zone (the Green-Ampt suction head). Solving for P alone stopped the suction at the front
+/// and left the wet zone's own P^c (~0.55 k^c at S ≈ 0.997 with α = 0.1) out of the balance.
 /// Discretisation: the SPH Laplacian of Brookshaw (1985), Σ_j w_ij (Φ_j − Φ_i) = 0 with the
 /// symmetric weights w_ij = |∇W_spiky(r_ij, h̄_ij)| / r_ij (equal volumes) (compact: no odd-even mode), solved
 /// by conjugate gradients warm-started from `P` (serial, so bitwise reproducible). A cluster of
@@ -48,7 +53,7 @@ double pond_pressure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const
 
 template <int D>
 void solve_harmonic_pressure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
-                             const std::vector<PressureRole>& role, double fluid_density, const Vec<D>& gravity,
-                             std::vector<double>& P);
+                             const std::vector<PressureRole>& role, const std::vector<double>& suction,
+                             double fluid_density, const Vec<D>& gravity, std::vector<double>& P);
 
 }  // namespace sc
