@@ -166,6 +166,13 @@ CaseSpec load_case(const std::string& path) {
     read_tank(o.object("tank"), c);
     check_blocks_inside_tank(c);
   }
+  c.method = o.string("method", "sph");
+  if (o.has("methods")) {
+    c.methods = o.raw("methods");
+    if (!c.methods.is_object()) o.fail("methods", "must be an object: {method name: {its parameters}}");
+    for (const auto& [name, params] : c.methods.items())
+      if (!params.is_object()) o.fail("methods", "the parameters of method \"" + name + "\" must be an object");
+  }
   c.validation = o.has("validation") ? o.raw("validation") : json::object();
   if (o.has("regression")) c.regression = read_regression(o.object("regression"));
   c.parameters_hash = parameters_hash(doc);

@@ -67,6 +67,13 @@ struct CaseSpec {
   RegressionSpec regression;    ///< limits of the comparison with the baseline
   std::string parameters_hash;  ///< of the canonical case JSON (io/regression_spec.hpp)
   std::map<std::string, TierSpec> tiers;
+  /// The method a run uses when none is asked for ("method", default "sph"; solver/method/).
+  std::string method = "sph";
+  /// "methods": {NAME: {...that method's own parameters...}}: the methods the case supports besides
+  /// `method`, each read and checked by its method (solver/<method>/).
+  json methods = json::object();
+  /// Whether the case can be run by `name` (it is `method` or a key of `methods`).
+  bool supports(const std::string& name) const { return name == method || methods.contains(name); }
 };
 
 /// Loads and checks a case file. Throws InputError (file, JSON path, rule) on any problem.

@@ -1,0 +1,70 @@
+// The seam between a simulation method and everything that runs or measures one.
+//
+// The runner, the bench, checkpoints and the observers of validation/ see a run only through
+// Method<D>: it steps, tells its clock, shows its particles read-only (ParticleView), hashes its
+// state, times its stages and writes its frames. SPH, Zhu-Bridson FLIP, DEM and two-grid MPM each
+// implement it in their own folder; solver/method/registry.hpp builds the one a case names.
+// What only one method can answer (SPH's neighbour lists, its porous parameters) lives behind that
+// method's own probe, never in this interface.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace sc {
+
+/// Read-only view of a method's particles, valid until its next step. Every method fills x, v, m
+/// and phase; an optional field is empty when the method has no such quantity on its particles.
+template <int D>
+struct ParticleView {
+  std::span<const Vec<D>> x;              ///< position [m]
+  std::span<const Vec<D>> v;              ///< velocity [m/s]
+  std::span<const double> m;              ///< mass the method moves [kg]
+  std::span<const std::uint8_t> phase;    ///< Phase as an integer
+  std::span<const std::int64_t> id;       ///< stable identity (optional)
+  std::span<const double> pressure;       ///< [Pa] (optional)
+  std::span<const double> held_water;     ///< water a sand particle holds besides m [kg] (optional)
+  std::span<const double> saturation;     ///< water fraction of a sand particle's pores, in [0, 1] (optional)
+
+  std::size_t size() const { return x.size(); }
+  Phase phase_of(std::size_t i) const { return static_cast<Phase>(phase[i]); }
+  bool moves(std::size_t i) const { return phase_of(i) != Phase::Boundary; }
+  double water_held_by(std::size_t i) const { return held_water.empty() ? 0.0 : held_water[i]; }
+};
+
+/// Wall-clock seconds a method spent in one of its named stages since the run started.
+struct StageTime {
+  std::string name;
+  double seconds = 0.0;
+};
+
+template <int D>
+class Method {
+ public:
+  virtual ~Method() = default;
+  /// The registry name: "sph", "flip", "dem", "mpm".
+  virtual std::string_view name() const = 0;
+  /// Advances by one step and returns its size [s]. Throws BlowUpError on an invalid state, after
+  /// which last_good_frame() shows the state at the start of the failed step.
+  virtual double step() = 0;
+  virtual double time() const = 0;
+  virtual long steps() const = 0;
+  virtual ParticleView<D> particles() const = 0;
+  /// Hash of the state (positions and velocities, in a fixed order) as 16 hex digits: two runs
+  /// agree bitwise exactly when their checksums do.
+  virtual std::string checksum() const = 0;
+  /// Exclusive stage times (every instant in one stage), in the method's own stage order.
+  virtual std::vector<StageTime> stage_times() const = 0;
+  virtual void reset_stage_times() = 0;
+  /// The current particles as a VTU document (ParaView), every particle field a point array.
+  virtual std::string vtu_frame() const = 0;
+  /// The state at the start of the last step, as a VTU document (written after a blow-up).
+  virtual std::string last_good_frame() const = 0;
+};
+
+}  // namespace sc
