@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "io/case_file.hpp"
+#include "scene/scene_builder.hpp"
 
 using namespace sc;
 
@@ -84,4 +85,34 @@ BOOST_AUTO_TEST_CASE(missing_file_and_bad_json) {
   BOOST_CHECK_THROW(load_case(path.string()), InputError);
 }
 
+
+// The particle-count guard estimates without building: blocks and tank walls from their lattices,
+// so for a case without meshes the estimate must bound the built count from above and stay close
+// to it (within 1 %: the lattices are counted as they are built).
+BOOST_AUTO_TEST_CASE(particle_estimate_bounds_the_built_scene) {
+  const std::string root = SANDCASTLE_SOURCE_DIR;
+  for (const char* name : {"hydrostatic", "dam_break_square", "column_collapse", "green_ampt", "wet_sand_collapse"}) {
+    const CaseSpec spec = load_case(root + "/cases/" + name + "/case.json");
+    const double dx = spec.tiers.at("quick").spacings.back();
+    const double built = static_cast<double>(build_scene<2>(spec, dx).size());
+    const double estimate = estimate_particles(spec, dx);
+    BOOST_TEST_CONTEXT(name << ": built " << built << ", estimated " << estimate) {
+      BOOST_TEST(estimate >= built);
+      BOOST_TEST(estimate <= 1.01 * built);
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(particle_guard_names_the_case_spacing_and_flag) {
+  const CaseSpec spec = load_case(write_temp(valid_case()));
+  BOOST_CHECK_NO_THROW(check_particle_count(spec, 0.01, kDefaultMaxParticles, "/tiers/quick/spacings/0"));
+  try {
+    check_particle_count(spec, 1e-6, kDefaultMaxParticles, "/tiers/quick/spacings/0");
+    BOOST_FAIL("a spacing of 1e-6 m must be refused");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.json_path() == "/tiers/quick/spacings/0");
+    BOOST_TEST(e.rule().find("--max-particles") != std::string::npos);
+    BOOST_TEST(e.rule().find("1e-06") != std::string::npos);
+  }
+}
 BOOST_AUTO_TEST_SUITE_END()

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "data_root.hpp"
 #include "io/atomic_file.hpp"
 #include "run_record.hpp"
 
@@ -129,7 +130,7 @@ std::string moved_items(const json& b) {
 }  // namespace
 
 std::string baselines_folder(const ValidateOptions& options) {
-  return options.baselines_dir.empty() ? std::string(SANDCASTLE_SOURCE_DIR) + "/reference/baselines" : options.baselines_dir;
+  return options.baselines_dir.empty() ? data_path("reference/baselines") : options.baselines_dir;
 }
 
 json build_identity() { return {{"compiler", SANDCASTLE_COMPILER}, {"flags", SANDCASTLE_FLAGS}}; }

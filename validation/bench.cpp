@@ -9,6 +9,7 @@
 #include <iostream>
 #include <map>
 
+#include "data_root.hpp"
 #include "io/atomic_file.hpp"
 #include "observer.hpp"
 #include "progress.hpp"
@@ -139,7 +140,7 @@ void print_table(const json& entries) {
 
 int bench(const BenchOptions& opt) {
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
-  const std::string cases_dir = opt.cases_dir.empty() ? std::string(SANDCASTLE_SOURCE_DIR) + "/cases" : opt.cases_dir;
+  const std::string cases_dir = opt.cases_dir.empty() ? data_path("cases") : opt.cases_dir;
   const std::vector<std::string>& scenes = opt.scenes.empty() ? default_scenes : opt.scenes;
   fs::create_directories(opt.out_dir);
   json entries = json::array();
@@ -149,6 +150,7 @@ int bench(const BenchOptions& opt) {
     if (!fs::exists(file)) throw InputError(file, "", "no scene named '" + name + "' (see " + cases_dir + ")");
     const CaseSpec spec = load_case(file);
     const double dx = spec.tiers.at("full").spacings.back();
+    check_particle_count(spec, dx, opt.max_particles, "/tiers/full/spacings");
     const long steps = opt.steps > 0 ? opt.steps : (name.rfind("bench_water", 0) == 0 ? 200 : 100);
     try {
       json entry = bench_any(spec, dx, steps);

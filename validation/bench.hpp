@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene_builder.hpp"
+
 namespace sc {
 
 struct BenchOptions {
@@ -11,6 +13,7 @@ struct BenchOptions {
   int threads = 0;                  ///< OpenMP threads; 0 = OpenMP's default (OMP_NUM_THREADS)
   std::string out_dir;
   std::string cases_dir;            ///< default: the repository's cases/
+  double max_particles = kDefaultMaxParticles;      ///< estimated particles above which a scene is refused (--max-particles)
 };
 
 /// Runs every scene at the finest spacing of its full tier and writes out_dir/bench.json: particle

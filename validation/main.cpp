@@ -6,10 +6,12 @@
 
 #include "baseline.hpp"
 #include "compare.hpp"
+#include "data_root.hpp"
 #include "io/atomic_file.hpp"
 #include "bench.hpp"
 #include "report.hpp"
 #include "runner.hpp"
+#include "scene/scene_builder.hpp"
 
 namespace {
 
@@ -22,10 +24,11 @@ const CLI::Validator output_folder(
     "FOLDER");
 
 int run_command(const std::string& case_file, const std::string& out_dir, const std::string& tier, double spacing,
-                long checkpoint_every, const std::string& resume_from) {
+                long checkpoint_every, const std::string& resume_from, double max_particles) {
   const sc::CaseSpec spec = sc::load_case(case_file);
   if (!spec.tiers.count(tier)) throw sc::InputError(case_file, "/tiers", "the case has no " + tier + " tier (try --tier full)");
   const double dx = spacing > 0.0 ? spacing : spec.tiers.at(tier).spacings.back();
+  sc::check_particle_count(spec, dx, max_particles, spacing > 0.0 ? "(--spacing)" : "/tiers/" + tier + "/spacings");
   sc::RunSettings settings;
   settings.out_dir = out_dir;
   settings.write_frames = true;
@@ -61,6 +64,12 @@ int bless_command(const sc::ValidateOptions& options, const std::string& from) {
 int main(int argc, char** argv) {
   CLI::App app{"sandcastle: particle-based sand + water simulation and its validation suite"};
   app.require_subcommand(1);
+  app.fallthrough();  // --root may follow the subcommand
+  std::string root;
+  app.add_option("--root", root,
+                 "folder holding cases/, reference/ and reports/ (default: $SANDCASTLE_ROOT, else the source tree)");
+  double max_particles = sc::kDefaultMaxParticles;
+  const std::string max_help = "stop with exit 2 before a run whose estimated particle count exceeds this";
 
   std::string case_file, run_out, run_tier = "quick";
   double spacing = 0.0;
@@ -75,6 +84,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   run->add_option("--resume", resume_from, "continue from this checkpoint (same case and spacing)")
       ->check(CLI::ExistingFile);
+  run->add_option("--max-particles", max_particles, max_help)->check(CLI::PositiveNumber);
 
   sc::ValidateOptions vopt;
   CLI::App* val = app.add_subcommand("validate", "Run the validation cases and write report.json, plots, summary.md");
@@ -84,15 +94,15 @@ int main(int argc, char** argv) {
   val->add_option("--cases-dir", vopt.cases_dir, "folder of cases (default: the repository's cases/)");
   val->add_flag("!--no-plots", vopt.plots, "skip the PNG plots and report.html");
   val->add_option("--baselines-dir", vopt.baselines_dir, "folder of baselines (default: reference/baselines)");
+  val->add_option("--max-particles", vopt.max_particles, max_help)->check(CLI::PositiveNumber);
 
   sc::ValidateOptions bopt;
-  bopt.out_dir = std::string(SANDCASTLE_SOURCE_DIR) + "/reports/baseline-run";
   bopt.plots = false;
   std::string bless_from;
   CLI::App* bl = app.add_subcommand("baseline", "Bless baselines: write reference/baselines/<case>.json from a run");
   bl->add_option("--tier", bopt.tier, "quick or full")->check(CLI::IsMember({"quick", "full"}));
   bl->add_option("--case", bopt.cases, "only these cases (repeatable)");
-  bl->add_option("--out", bopt.out_dir, "folder of the run (default: reports/baseline-run)");
+  bl->add_option("--out", bopt.out_dir, "folder of the run (default: reports/baseline-run under the root)");
   bl->add_option("--cases-dir", bopt.cases_dir, "folder of cases (default: the repository's cases/)");
   bl->add_option("--baselines-dir", bopt.baselines_dir, "folder of baselines (default: reference/baselines)");
   bl->add_option("--from", bless_from, "bless this finished validation run instead of running the cases")
@@ -114,6 +124,7 @@ int main(int argc, char** argv) {
   bench->add_option("--threads", benchopt.threads, "OpenMP threads (default: OMP_NUM_THREADS)")->check(CLI::PositiveNumber);
   bench->add_option("--out", benchopt.out_dir, "output folder")->required()->check(output_folder);
   bench->add_option("--cases-dir", benchopt.cases_dir, "folder of cases (default: the repository's cases/)");
+  bench->add_option("--max-particles", benchopt.max_particles, max_help)->check(CLI::PositiveNumber);
 
   try {
     app.parse(argc, argv);
@@ -122,7 +133,9 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : sc::kBadInput;
   }
   try {
-    if (*run) return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from);
+    sc::set_data_root(root);
+    if (bopt.out_dir.empty()) bopt.out_dir = sc::data_path("reports/baseline-run");
+    if (*run) return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from, max_particles);
     if (*bl) return bless_command(bopt, bless_from);
     if (*cmp) return sc::compare_runs(compare_a, compare_b, compare_out, compare_plots);
     if (*bench) return sc::bench(benchopt);

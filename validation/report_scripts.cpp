@@ -1,3 +1,4 @@
+#include "data_root.hpp"
 #include "report_scripts.hpp"
 
 #include <cstdlib>
@@ -17,7 +18,7 @@ std::string quoted(const std::string& s) {
 }  // namespace
 
 bool run_report_script(const std::string& script, const std::vector<std::string>& args) {
-  std::string cmd = "/usr/bin/python3 " + quoted(std::string(SANDCASTLE_SOURCE_DIR) + "/reports/" + script);
+  std::string cmd = "/usr/bin/python3 " + quoted(data_path("reports/" + script));
   for (const std::string& a : args) cmd.append(" ").append(quoted(a));  // not " " + ...: GCC 12 -O3 warns falsely (-Wrestrict)
   if (std::system(cmd.c_str()) == 0) return true;
   std::cerr << "warning: reports/" << script << " failed (needs python3-matplotlib); the JSON and Markdown reports are complete\n";

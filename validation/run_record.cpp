@@ -35,6 +35,18 @@ Oriented orient(const Series& s) {
 
 double json_number(const json& j) { return j.is_number() ? j.get<double>() : NAN; }
 
+/// The numbers of a series array; null (how finite_or_null writes a NaN) reads back as NaN.
+std::vector<double> series_values(const json& array) {
+  if (!array.is_array()) throw json::type_error::create(302, "series values must be an array", &array);
+  std::vector<double> out;
+  out.reserve(array.size());
+  for (const json& v : array) {
+    if (!v.is_number() && !v.is_null()) throw json::type_error::create(302, "series values must be numbers or null", &v);
+    out.push_back(json_number(v));
+  }
+  return out;
+}
+
 }  // namespace
 
 json finite_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
@@ -44,7 +56,7 @@ std::vector<Series> series_from_json(const json& series_array, const std::string
   try {
     for (const json& s : series_array)
       out.push_back({s.at("name"), s.value("x_label", ""), s.value("y_label", ""),
-                     s.at("x").get<std::vector<double>>(), s.at("y").get<std::vector<double>>()});
+                     series_values(s.at("x")), series_values(s.at("y"))});
   } catch (const json::exception& e) {
     throw InputError(file, "/series", std::string("malformed series: ") + e.what());
   }

@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "adaptive_report.hpp"
+#include "data_root.hpp"
 #include "dry_twin_report.hpp"
 #include "io/atomic_file.hpp"
 #include "io/vtu_writer.hpp"
@@ -24,7 +25,7 @@ namespace {
 
 template <int D>
 RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& settings) {
-  const ObserverContext ctx{spec, dx, SANDCASTLE_SOURCE_DIR};
+  const ObserverContext ctx{spec, dx, data_root()};
   std::unique_ptr<Observer<D>> observer = make_observer<D>(ctx);  // checks the validation block first
   FrameLog log;
   Simulator<D> sim = start_simulator<D>(spec, dx, settings.resume_from, log);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "io/case_file.hpp"
+#include "scene/scene_builder.hpp"
 #include "observer.hpp"
 
 namespace sc {
@@ -54,6 +55,7 @@ struct ValidateOptions {
   std::string cases_dir;           ///< default: <source>/cases
   std::string baselines_dir;       ///< default: <source>/reference/baselines
   bool plots = true;
+  double max_particles = kDefaultMaxParticles;     ///< estimated particles above which a run is refused (--max-particles)
 };
 
 /// The validation suite; returns the exit code (0 only if every case passed).

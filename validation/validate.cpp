@@ -5,10 +5,12 @@
 #include <iostream>
 
 #include "baseline.hpp"
+#include "data_root.hpp"
 #include "io/atomic_file.hpp"
 #include "report.hpp"
 #include "report_scripts.hpp"
 #include "runner.hpp"
+#include "scene/scene_builder.hpp"
 
 namespace fs = std::filesystem;
 
@@ -19,6 +21,8 @@ namespace {
 /// Runs one case at every spacing of the tier and returns its report entry.
 json validate_case(const CaseSpec& spec, const ValidateOptions& opt, int& exit_code) {
   const TierSpec& tier = spec.tiers.at(opt.tier);
+  for (std::size_t k = 0; k < tier.spacings.size(); ++k)  // every spacing, before the first run
+    check_particle_count(spec, tier.spacings[k], opt.max_particles, "/tiers/" + opt.tier + "/spacings/" + std::to_string(k));
   const std::string case_dir = opt.out_dir + "/" + spec.name;
   std::vector<RunResult> runs;
   for (std::size_t k = 0; k < tier.spacings.size(); ++k) {
@@ -53,7 +57,7 @@ json validate_case(const CaseSpec& spec, const ValidateOptions& opt, int& exit_c
 }
 
 void run_plot_script(const std::string& out_dir) {
-  const std::string cmd = std::string("/usr/bin/python3 '") + SANDCASTLE_SOURCE_DIR + "/reports/plot_series.py' '" + out_dir + "'";
+  const std::string cmd = std::string("/usr/bin/python3 '") + data_path("reports/plot_series.py") + "' '" + out_dir + "'";
   if (std::system(cmd.c_str()) != 0)
     std::cerr << "warning: plotting failed (needs python3-matplotlib); report.json and series are complete\n";
 }
@@ -61,7 +65,7 @@ void run_plot_script(const std::string& out_dir) {
 }  // namespace
 
 int validate(const ValidateOptions& opt) {
-  const std::string cases_dir = opt.cases_dir.empty() ? std::string(SANDCASTLE_SOURCE_DIR) + "/cases" : opt.cases_dir;
+  const std::string cases_dir = opt.cases_dir.empty() ? data_path("cases") : opt.cases_dir;
   std::vector<std::string> files = discover_cases(cases_dir);
   if (!opt.cases.empty()) {
     std::vector<std::string> chosen;

@@ -83,6 +83,9 @@ void read_time(JsonObject o, CaseSpec& c) {
   c.relax_until = o.non_negative("relax_until", 0.0);
   c.relax_rate = o.non_negative("relax_rate", 0.0);
   if (c.relax_until >= c.end_time) o.fail("relax_until", "must be earlier than time.end");
+  if (c.frame_interval > 0.0 && c.frame_interval < c.dt_max)
+    o.fail("frame_interval", "must be 0 (first and last frame only) or at least time.dt = " + json(c.dt_max).dump() +
+                                 " (one frame per step at most)");
   o.finish();
 }
 

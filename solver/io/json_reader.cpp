@@ -2,9 +2,69 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace sc {
+
+namespace {
+
+/// Watches the parser's events and rejects an object that names a key twice (RFC 8259 leaves the
+/// meaning open; nlohmann keeps the last, which would hide a typo). Keeps the JSON path of the
+/// value being read, so the error points at the object.
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(std::string file) : file_(std::move(file)) {}
+
+  bool operator()(int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: open(true); break;
+      case json::parse_event_t::array_start: open(false); break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end: frames_.pop_back(); break;
+      case json::parse_event_t::key: add_key(parsed.get<std::string>()); break;
+      case json::parse_event_t::value:
+        if (!frames_.empty() && !frames_.back().object) ++frames_.back().count;
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool object;
+    std::string path;                  ///< JSON pointer of this object or array
+    std::map<std::string, int> keys;   ///< key -> its position (1-based) in the object
+    std::string last_key;
+    int count = 0;                     ///< keys (object) or elements (array) seen so far
+  };
+
+  void open(bool object) {
+    std::string path;
+    if (!frames_.empty()) {
+      Frame& parent = frames_.back();
+      path = parent.path + "/" + (parent.object ? parent.last_key : std::to_string(parent.count++));
+    }
+    frames_.push_back({object, path, {}, {}, 0});
+  }
+
+  void add_key(const std::string& key) {
+    Frame& f = frames_.back();
+    const int position = ++f.count;
+    const auto [it, inserted] = f.keys.emplace(key, position);
+    if (!inserted)
+      throw InputError(file_, f.path + "/" + key,
+                       "duplicate key: \"" + key + "\" is key " + std::to_string(it->second) + " and again key " +
+                           std::to_string(position) + " of " + (f.path.empty() ? "the document" : f.path) +
+                           " (only one may be given)");
+    f.last_key = key;
+  }
+
+  std::string file_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
 
 json read_json_file(const std::string& path) {
   std::ifstream in(path);
@@ -12,7 +72,7 @@ json read_json_file(const std::string& path) {
   std::stringstream buf;
   buf << in.rdbuf();
   try {
-    return json::parse(buf.str());
+    return json::parse(buf.str(), DuplicateKeyCheck(path));
   } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e999
     throw InputError(path, "", std::string("not valid JSON: ") + e.what());
   }

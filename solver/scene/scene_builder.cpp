@@ -1,6 +1,7 @@
 #include "scene/scene_builder.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "porous/porous_setup.hpp"
 #include "scene/mesh_fill.hpp"
@@ -107,6 +108,51 @@ ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
   if (spec.porous) init_porous(ps, *spec.porous, dx);
   if (spec.tank) add_tank(ps, *spec.tank, dx, h, mass, rho0);
   return ps;
+}
+
+namespace {
+
+/// Points of the lattice of spacing dx in the box [lo, hi) (as lattice_points makes them).
+double lattice_count(const std::vector<double>& lo, const std::vector<double>& hi, double dx) {
+  double n = 1.0;
+  for (std::size_t d = 0; d < lo.size(); ++d) n *= std::max(1.0, std::round((hi[d] - lo[d]) / dx));
+  return n;
+}
+
+/// Wall particles of the tank: the lattice of the box grown by the wall layers on its closed sides,
+/// less the lattice of the box itself (as add_tank makes them).
+double tank_wall_count(const TankSpec& tank, double dx, double h) {
+  const double grow = tank_wall_layers(h, dx) * dx;
+  std::vector<double> lo = tank.min, hi = tank.max;
+  const char* axes = "xyz";
+  for (std::size_t d = 0; d < lo.size(); ++d) {
+    if (tank.sides.at(std::string(1, axes[d]) + "-") != "open") lo[d] -= grow;
+    if (tank.sides.at(std::string(1, axes[d]) + "+") != "open") hi[d] += grow;
+  }
+  return lattice_count(lo, hi, dx) - lattice_count(tank.min, tank.max, dx);
+}
+
+}  // namespace
+
+double estimate_particles(const CaseSpec& spec, double dx) {
+  double n = 0.0;
+  for (const BlockSpec& b : spec.blocks) n += lattice_count(b.min, b.max, dx);
+  const std::vector<double>& box_min = spec.tank ? spec.tank->min : spec.domain_min;
+  const std::vector<double>& box_max = spec.tank ? spec.tank->max : spec.domain_max;
+  n += static_cast<double>(spec.meshes.size()) * lattice_count(box_min, box_max, dx);
+  if (spec.tank) n += tank_wall_count(*spec.tank, dx, spec.support_ratio * dx);
+  return n;
+}
+
+void check_particle_count(const CaseSpec& spec, double dx, double limit, const std::string& json_path) {
+  const double n = estimate_particles(spec, dx);
+  if (n <= limit) return;
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "case '%s' at spacing %g m would make about %.3g particles, above the limit of %.3g "
+                "(a mistyped spacing? a larger run needs --max-particles)",
+                spec.name.c_str(), dx, n, limit);
+  throw InputError(spec.file, json_path, text);
 }
 
 template double lattice_mass<2>(double, double, double, kernel::DensityKernel);

@@ -22,6 +22,20 @@ std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>> lattice_points(const Vec<D
 /// particle at the wall (ceil(h / dx)).
 inline int tank_wall_layers(double h, double dx) { return static_cast<int>(std::ceil(h / dx)); }
 
+/// How many particles build_scene would make at spacing dx, found without making them: blocks and
+/// tank walls counted from their lattices (as built), each mesh bounded by the lattice of the box it must fit
+/// in (the tank, else the domain). A double, so that a mistyped spacing cannot overflow it.
+double estimate_particles(const CaseSpec& spec, double dx);
+
+/// The default of `--max-particles`: far above every case of the suite, far below what a mistyped
+/// spacing asks for (a dam break at 1e-7 m would need about 3e11 particles).
+inline constexpr double kDefaultMaxParticles = 3e7;
+
+/// Throws InputError (the case file, `json_path` of the spacing, the estimate and the flag that
+/// raises the limit) when the case at spacing dx would exceed `limit` particles. Called before
+/// anything is allocated.
+void check_particle_count(const CaseSpec& spec, double dx, double limit, const std::string& json_path);
+
 /// The particles of `spec` at spacing dx: its blocks (in file order) then its tank walls.
 template <int D>
 ParticleSet<D> build_scene(const CaseSpec& spec, double dx);
