@@ -50,7 +50,9 @@ BOOST_AUTO_TEST_CASE(valid_case_loads) {
   const CaseSpec c = load_case(write_temp(valid_case()));
   BOOST_TEST(c.dimension == 2);
   BOOST_TEST(c.tiers.at("full").spacings.size() == 2u);
-  BOOST_TEST(c.tank->sides.at("y-") == "no_slip");
+  BOOST_TEST((c.tank->rule(1, -1) == WallRule::NoSlip));
+  BOOST_TEST((c.tank->rule(1, 1) == WallRule::Open));
+  BOOST_TEST((c.tank->rule(0, 1) == WallRule::Slip));
   BOOST_TEST(c.water.rest_density == 1000.0);
 }
 

@@ -14,7 +14,10 @@ TankSpec open_tank() {
   TankSpec t;
   t.min = {0.0, 0.0};
   t.max = {1.0, 1.0};
-  t.sides = {{"x-", "slip"}, {"x+", "slip"}, {"y-", "no_slip"}, {"y+", "open"}};
+  t.rules[TankSpec::side_index(0, -1)] = WallRule::Slip;
+  t.rules[TankSpec::side_index(0, 1)] = WallRule::Slip;
+  t.rules[TankSpec::side_index(1, -1)] = WallRule::NoSlip;
+  t.rules[TankSpec::side_index(1, 1)] = WallRule::Open;
   return t;
 }
 
@@ -124,7 +127,7 @@ BOOST_AUTO_TEST_CASE(thrown_particle_never_leaves_a_slip_box_and_only_loses_ener
   params.domain_min = {-0.1, -0.1};
   params.domain_max = {1.1, 2.0};
   TankSpec tank = open_tank();
-  tank.sides["y-"] = "slip";
+  tank.rules[TankSpec::side_index(1, -1)] = WallRule::Slip;
   tank.collision = true;
   params.tank = tank;
   params.tank_wall_thickness = 0.02;

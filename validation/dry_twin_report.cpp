@@ -13,8 +13,8 @@ namespace {
 CaseSpec without_water(const CaseSpec& spec) {
   CaseSpec dry = spec;
   dry.validation.erase("dry_twin");
-  std::erase_if(dry.blocks, [](const BlockSpec& b) { return b.phase == "water"; });
-  std::erase_if(dry.meshes, [](const MeshSpec& m) { return m.phase == "water"; });
+  std::erase_if(dry.blocks, [](const BlockSpec& b) { return b.fill == BlockFill::Water; });
+  std::erase_if(dry.meshes, [](const MeshSpec& m) { return m.phase == Phase::Water; });
   return dry;
 }
 

@@ -6,15 +6,13 @@ template <int D>
 TankWalls<D> TankWalls<D>::from_tank(const TankSpec& tank, double thickness) {
   TankWalls w;
   w.thickness = thickness;
-  const char* axes = "xyz";
   for (int d = 0; d < D; ++d) {
     w.extent_min[d] = tank.min[d];
     w.extent_max[d] = tank.max[d];
     for (const int outward : {-1, 1}) {
-      const std::string& rule = tank.sides.at(std::string(1, axes[d]) + (outward < 0 ? "-" : "+"));
-      if (rule == "open") continue;
+      if (!tank.closed(d, outward)) continue;
       const double plane = outward < 0 ? tank.min[d] : tank.max[d];
-      w.sides.push_back(Side{d, outward, plane, rule == "no_slip"});
+      w.sides.push_back(Side{d, outward, plane, tank.rule(d, outward) == WallRule::NoSlip});
       (outward < 0 ? w.extent_min[d] : w.extent_max[d]) = plane + outward * thickness;
     }
   }

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "core/particle_set.hpp"
-#include "io/case_file.hpp"
+#include "io/scene_spec.hpp"
 
 namespace sc {
 

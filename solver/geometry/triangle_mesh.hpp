@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "io/mesh_spec.hpp"
 
 namespace sc {
 
@@ -33,17 +34,7 @@ EdgeReport edge_report(const TriangleMesh& mesh);
 /// with holes has no well-defined inside, so it is refused rather than filled by a guess.
 void require_closed(const TriangleMesh& mesh, const std::string& path);
 
-/// How a mesh is put into a scene: rotated so that `up_axis` of the file ("y" or "z") becomes +z,
-/// scaled about the file's origin by `scale` (or so that its largest extent is `size` metres when
-/// size > 0), then moved by `translation` [m], or so that its bounding-box minimum lands on
-/// `min_corner` when that is given.
-struct MeshPlacement {
-  std::string up_axis = "z";
-  double scale = 1.0;
-  double size = 0.0;
-  std::vector<double> translation;
-  std::vector<double> min_corner;
-};
+/// Places a mesh as a case's MeshPlacement says (io/mesh_spec.hpp).
 TriangleMesh place_mesh(TriangleMesh mesh, const MeshPlacement& placement);
 
 }  // namespace sc

@@ -9,16 +9,6 @@ namespace sc {
 
 namespace {
 
-std::vector<std::string> side_names(int dim) {
-  std::vector<std::string> out;
-  const char* axes = "xyz";
-  for (int d = 0; d < dim; ++d) {
-    out.push_back(std::string(1, axes[d]) + "-");
-    out.push_back(std::string(1, axes[d]) + "+");
-  }
-  return out;
-}
-
 void check_box(JsonObject& o, const std::vector<double>& lo, const std::vector<double>& hi) {
   for (std::size_t d = 0; d < lo.size(); ++d)
     if (!(hi[d] > lo[d])) o.fail("max", "must exceed min in every coordinate (axis " + std::to_string(d) + ")");
@@ -67,8 +57,12 @@ void read_tank(JsonObject o, CaseSpec& c) {
   t.max = o.numbers("max", c.dimension);
   check_box(o, t.min, t.max);
   JsonObject sides = o.object("sides");
-  for (const auto& name : side_names(c.dimension))
-    t.sides[name] = sides.one_of(name, {"no_slip", "slip", "open"});
+  for (int d = 0; d < c.dimension; ++d)
+    for (const int outward : {-1, 1}) {
+      const std::string rule = sides.one_of(TankSpec::side_name(d, outward), {"no_slip", "slip", "open"});
+      t.rules[TankSpec::side_index(d, outward)] =
+          rule == "no_slip" ? WallRule::NoSlip : (rule == "slip" ? WallRule::Slip : WallRule::Open);
+    }
   sides.finish();
   t.collision = o.boolean("collision", false);
   o.finish();
@@ -107,16 +101,14 @@ void read_tiers(JsonObject o, CaseSpec& c) {
 /// A block must not reach into the wall layers of a closed tank side: it must lie within the
 /// tank's box on every side that is not open.
 void check_blocks_inside_tank(const CaseSpec& c) {
-  const char* axes = "xyz";
   for (std::size_t k = 0; k < c.blocks.size(); ++k)
     for (int d = 0; d < c.dimension; ++d) {
-      const std::string axis(1, axes[d]);
       const BlockSpec& b = c.blocks[k];
       const std::string where = "/blocks/" + std::to_string(k);
-      if (c.tank->sides.at(axis + "-") != "open" && b.min[d] < c.tank->min[d])
-        throw InputError(c.file, where + "/min", "block overlaps the tank wall " + axis + "- (closed side): it must lie inside the tank");
-      if (c.tank->sides.at(axis + "+") != "open" && b.max[d] > c.tank->max[d])
-        throw InputError(c.file, where + "/max", "block overlaps the tank wall " + axis + "+ (closed side): it must lie inside the tank");
+      if (c.tank->closed(d, -1) && b.min[d] < c.tank->min[d])
+        throw InputError(c.file, where + "/min", "block overlaps the tank wall " + TankSpec::side_name(d, -1) + " (closed side): it must lie inside the tank");
+      if (c.tank->closed(d, 1) && b.max[d] > c.tank->max[d])
+        throw InputError(c.file, where + "/max", "block overlaps the tank wall " + TankSpec::side_name(d, 1) + " (closed side): it must lie inside the tank");
     }
 }
 
@@ -148,9 +140,10 @@ CaseSpec load_case(const std::string& path) {
   }
   for (JsonObject b : o.objects("blocks")) {
     BlockSpec block;
-    block.phase = b.one_of("phase", {"water", "sand", "porous_bed"});
-    if (block.phase == "porous_bed" && !c.porous) b.fail("phase", "a porous_bed block needs the \"porous\" section");
-    if (block.phase == "sand" && !c.has_sand) b.fail("phase", "a sand block needs the \"sand\" section");
+    const std::string fill = b.one_of("phase", {"water", "sand", "porous_bed"});
+    if (fill == "porous_bed" && !c.porous) b.fail("phase", "a porous_bed block needs the \"porous\" section");
+    if (fill == "sand" && !c.has_sand) b.fail("phase", "a sand block needs the \"sand\" section");
+    block.fill = fill == "sand" ? BlockFill::Sand : (fill == "water" ? BlockFill::Water : BlockFill::PorousBed);
     block.min = b.numbers("min", c.dimension);
     block.max = b.numbers("max", c.dimension);
     check_box(b, block.min, block.max);
@@ -163,7 +156,7 @@ CaseSpec load_case(const std::string& path) {
   if (o.has("meshes")) {
     if (c.dimension != 3) o.fail("meshes", "meshes need \"dimension\": 3");
     for (JsonObject m : o.objects("meshes"))
-      c.meshes.push_back(read_mesh(m, path, c.has_sand ? std::vector<std::string>{"water", "sand"} : std::vector<std::string>{"water"}));
+      c.meshes.push_back(read_mesh(m, path, c.has_sand));
   }
   if (o.has("tank")) {
     read_tank(o.object("tank"), c);

@@ -10,29 +10,13 @@
 #include "io/json_reader.hpp"
 #include "io/mesh_spec.hpp"
 #include "io/regression_spec.hpp"
+#include "io/scene_spec.hpp"
 #include "porous/porous_params.hpp"
 #include "sand/sand_params.hpp"
 #include "sph/equation_of_state.hpp"
 #include "water/water_forces.hpp"
 
 namespace sc {
-
-/// A rectangular block of particles on a lattice at the case spacing.
-struct BlockSpec {
-  std::string phase;             ///< "water" or "sand"
-  std::vector<double> min, max;  ///< corners [m]
-};
-
-/// A container whose walls are layers of boundary particles outside [min, max].
-/// Sides are named "x-", "x+", "y-", "y+" (and "z-", "z+" in 3-D); each is "no_slip" (rough),
-/// "slip" or "open" (no wall).
-struct TankSpec {
-  std::vector<double> min, max;
-  std::map<std::string, std::string> sides;
-  /// Closed sides also stop moving particles by collision (boundary/wall_collision.hpp), behind the
-  /// wall particles: for scenes whose splashes are too fast for the wall particles alone.
-  bool collision = false;
-};
 
 struct TierSpec {
   std::vector<double> spacings;  ///< particle spacings [m], coarse to fine; the last one is reported

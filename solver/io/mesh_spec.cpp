@@ -20,13 +20,14 @@ std::string resolve_mesh_file(JsonObject& o, const std::string& case_file) {
 
 }  // namespace
 
-MeshSpec read_mesh(JsonObject o, const std::string& case_file, const std::vector<std::string>& phases) {
+MeshSpec read_mesh(JsonObject o, const std::string& case_file, bool with_sand) {
   MeshSpec m;
   m.json_path = o.path();
   m.file = resolve_mesh_file(o, case_file);
-  m.phase = o.string("phase");
-  if (std::find(phases.begin(), phases.end(), m.phase) == phases.end())
+  const std::string phase = o.string("phase");
+  if (phase != "water" && !(phase == "sand" && with_sand))
     o.fail("phase", "must be one of the phases this case defines (water; sand needs the \"sand\" section)");
+  m.phase = phase == "sand" ? Phase::Sand : Phase::Water;
   m.placement.up_axis = o.one_of("up_axis", {"y", "z"}, "z");
   if (o.has("scale") == o.has("size")) o.fail("scale", "give exactly one of \"scale\" and \"size\"");
   m.placement.scale = o.has("scale") ? o.positive("scale") : 1.0;

@@ -13,14 +13,11 @@ void check_fits(const CaseSpec& spec, const MeshSpec& mesh, const TriangleMesh& 
                                                     ", " + std::to_string(lo[2]) + ") .. (" + std::to_string(hi[0]) + ", " +
                                                     std::to_string(hi[1]) + ", " + std::to_string(hi[2]) + "): " + what);
   };
-  const char* axes = "xyz";
   for (int d = 0; d < 3; ++d) {
     if (lo[d] < spec.domain_min[d] || hi[d] > spec.domain_max[d]) fail("it must lie inside the domain");
     if (!spec.tank) continue;
-    const std::string axis(1, axes[d]);
-    if ((spec.tank->sides.at(axis + "-") != "open" && lo[d] < spec.tank->min[d]) ||
-        (spec.tank->sides.at(axis + "+") != "open" && hi[d] > spec.tank->max[d]))
-      fail("it overlaps a closed tank wall on axis " + axis);
+    if ((spec.tank->closed(d, -1) && lo[d] < spec.tank->min[d]) || (spec.tank->closed(d, 1) && hi[d] > spec.tank->max[d]))
+      fail("it overlaps a closed tank wall on axis " + std::string(1, "xyz"[d]));
   }
 }
 

@@ -63,20 +63,19 @@ void add_particle(ParticleSet<D>& ps, const Vec<D>& x, Phase phase, double mass,
 template <int D>
 void add_tank(ParticleSet<D>& ps, const TankSpec& tank, double dx, double h, double mass, double rho0) {
   const int layers = tank_wall_layers(h, dx);
-  const char* axes = "xyz";
   Vec<D> lo = to_vec<D>(tank.min), hi = to_vec<D>(tank.max);
   Vec<D> ext_lo = lo, ext_hi = hi;
   for (int d = 0; d < D; ++d) {
-    if (tank.sides.at(std::string(1, axes[d]) + "-") != "open") ext_lo[d] -= layers * dx;
-    if (tank.sides.at(std::string(1, axes[d]) + "+") != "open") ext_hi[d] += layers * dx;
+    if (tank.closed(d, -1)) ext_lo[d] -= layers * dx;
+    if (tank.closed(d, 1)) ext_hi[d] += layers * dx;
   }
   for (const Vec<D>& p : lattice_points<D>(ext_lo, ext_hi, dx)) {
     bool outside = false, rough = false;
     for (int d = 0; d < D; ++d) {
-      const char* side = p[d] < lo[d] ? "-" : (p[d] > hi[d] ? "+" : nullptr);
-      if (!side) continue;
+      const int outward = p[d] < lo[d] ? -1 : (p[d] > hi[d] ? 1 : 0);
+      if (outward == 0) continue;
       outside = true;
-      if (tank.sides.at(std::string(1, axes[d]) + side) == "no_slip") rough = true;
+      if (tank.rule(d, outward) == WallRule::NoSlip) rough = true;
     }
     if (outside) add_particle(ps, p, Phase::Boundary, mass, h, rho0, rough);
   }
@@ -93,17 +92,15 @@ ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
   const double sand_rho0 = spec.sand.rest_density;
   const double sand_mass = lattice_mass<D>(sand_rho0, dx, h, spec.water.density_kernel);
   for (const BlockSpec& block : spec.blocks) {
-    const bool sand = block.phase == "sand";
-    const bool bed = block.phase == "porous_bed";  // fixed porous skeleton: boundary-phase particles
+    const bool sand = block.fill == BlockFill::Sand;
     for (const Vec<D>& p : lattice_points<D>(to_vec<D>(block.min), to_vec<D>(block.max), dx))
-      add_particle(ps, p, sand ? Phase::Sand : (bed ? Phase::Boundary : Phase::Water), sand ? sand_mass : mass, h,
-                   sand ? sand_rho0 : rho0, false);
+      add_particle(ps, p, block.phase(), sand ? sand_mass : mass, h, sand ? sand_rho0 : rho0, false);
   }
   if constexpr (D == 3)
     for (const MeshSpec& m : spec.meshes) {
-      const bool sand = m.phase == "sand";
+      const bool sand = m.phase == Phase::Sand;
       for (const Vec<3>& p : mesh_particles(spec, m, dx))
-        add_particle(ps, p, sand ? Phase::Sand : Phase::Water, sand ? sand_mass : mass, h, sand ? sand_rho0 : rho0, false);
+        add_particle(ps, p, m.phase, sand ? sand_mass : mass, h, sand ? sand_rho0 : rho0, false);
     }
   if (spec.porous) init_porous(ps, *spec.porous, dx);
   if (spec.tank) add_tank(ps, *spec.tank, dx, h, mass, rho0);
@@ -124,10 +121,9 @@ double lattice_count(const std::vector<double>& lo, const std::vector<double>& h
 double tank_wall_count(const TankSpec& tank, double dx, double h) {
   const double grow = tank_wall_layers(h, dx) * dx;
   std::vector<double> lo = tank.min, hi = tank.max;
-  const char* axes = "xyz";
   for (std::size_t d = 0; d < lo.size(); ++d) {
-    if (tank.sides.at(std::string(1, axes[d]) + "-") != "open") lo[d] -= grow;
-    if (tank.sides.at(std::string(1, axes[d]) + "+") != "open") hi[d] += grow;
+    if (tank.closed(static_cast<int>(d), -1)) lo[d] -= grow;
+    if (tank.closed(static_cast<int>(d), 1)) hi[d] += grow;
   }
   return lattice_count(lo, hi, dx) - lattice_count(tank.min, tank.max, dx);
 }

@@ -22,7 +22,7 @@ class ColumnCollapseObserver : public Observer<D> {
  public:
   explicit ColumnCollapseObserver(const ObserverContext& ctx) : dx_(ctx.spacing) {
     JsonObject o = validation_block(ctx);
-    if (!ctx.spec.tank || ctx.spec.blocks.empty() || ctx.spec.blocks.front().phase != "sand")
+    if (!ctx.spec.tank || ctx.spec.blocks.empty() || ctx.spec.blocks.front().fill != BlockFill::Sand)
       o.fail("observer", "the column_collapse observer needs a tank and a sand block first");
     runout_band_ = o.numbers("runout_band", 2);
     limits_ = read_metric_limits(o);

@@ -104,7 +104,7 @@ class RigidClusterObserver : public Observer<D> {
  public:
   explicit RigidClusterObserver(const ObserverContext& ctx) {
     JsonObject o = validation_block(ctx);
-    if (ctx.spec.blocks.empty() || ctx.spec.blocks.front().phase != "sand")
+    if (ctx.spec.blocks.empty() || ctx.spec.blocks.front().fill != BlockFill::Sand)
       o.fail("observer", "the rigid_cluster observer needs a sand block first");
     periods_ = static_cast<int>(o.integer("periods", 1, 10000, 100));
     steps_ = static_cast<int>(o.integer("steps_per_period", 20, 100000, 400));

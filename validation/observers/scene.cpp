@@ -97,13 +97,11 @@ class SceneObserver : public Observer<D> {
   }
 
   bool outside(const Vec<D>& x) const {
-    const char* axes = "xyz";
     for (int d = 0; d < D; ++d) {
       if (x[d] < spec_.domain_min[d] || x[d] > spec_.domain_max[d]) return true;
       if (!spec_.tank) continue;
-      const std::string axis(1, axes[d]);
-      if (spec_.tank->sides.at(axis + "-") != "open" && x[d] < spec_.tank->min[d] - dx_) return true;
-      if (spec_.tank->sides.at(axis + "+") != "open" && x[d] > spec_.tank->max[d] + dx_) return true;
+      if (spec_.tank->closed(d, -1) && x[d] < spec_.tank->min[d] - dx_) return true;
+      if (spec_.tank->closed(d, 1) && x[d] > spec_.tank->max[d] + dx_) return true;
     }
     return false;
   }
