@@ -497,7 +497,7 @@ BOOST_AUTO_TEST_CASE(results_do_not_depend_on_the_thread_count) {
 }
 
 BOOST_AUTO_TEST_CASE(green_ampt_worked_values) {
-  // REFERENCES.md §4: K = 1e-4 m/s, ψ = 0.10 m, Δθ = 0.3.
+  // docs/references.md §4: K = 1e-4 m/s, ψ = 0.10 m, Δθ = 0.3.
   const double t[] = {10.0, 60.0, 300.0, 1800.0};
   const double F[] = {8.426e-3, 23.167e-3, 64.386e-3, 246.646e-3};
   for (int k = 0; k < 4; ++k)

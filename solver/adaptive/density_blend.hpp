@@ -1,4 +1,4 @@
-// Density blending across splits and merges (EQUATIONS.md §4.7: "blend the children in").
+// Density blending across splits and merges (docs/equations.md §4.7: "blend the children in").
 //
 // Summation density (eq 6) of a new arrangement differs from the old one by the kernel-sum error
 // of the arrangement: a merged pair at h = 2 dx reads ~5 % over rest density, its fine neighbours

@@ -25,7 +25,7 @@ struct ExchangeSlot {
 };
 
 /// Mass flow from `src` to `dst` before limiting [thesis eq. 28] and [thesis eq. 29], in the
-/// conserving upwind form 28′ of EQUATIONS.md (ours [I]), in kg/s:
+/// conserving upwind form 28′ of docs/equations.md (ours [I]), in kg/s:
 ///   Φ_{j→i} = L_ij · max(0, v_pj · (x_i − x_j)/r) · S_j^β · m_pj · V_i · ∇²W_visc(r, h̄),
 /// with h̄ = (h_i + h_j)/2 and L_ij = λ h̄. The net rate of i is Σ_j (Φ_{j→i} − Φ_{i→j}): what one
 /// particle gains its neighbour loses, so the water balance is exact.

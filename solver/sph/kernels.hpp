@@ -1,7 +1,7 @@
 // Smoothing kernels of Müller, Charypar & Gross 2003 in 2-D and 3-D, with the exact constants of
-// shared/design/EQUATIONS.md §1 (each derived from the normalisation ∫W dV = 1).
+// docs/equations.md §1 (each derived from the normalisation ∫W dV = 1).
 //
-// Conventions (EQUATIONS.md §0): `d` is x_i - x_j and r = |d|. Every gradient is the gradient with
+// Conventions (docs/equations.md §0): `d` is x_i - x_j and r = |d|. Every gradient is the gradient with
 // respect to x_i, gradW_ij = W'(r) d / r, which points from i towards j (W' < 0). All kernels vanish
 // for r >= h.
 //
@@ -153,7 +153,7 @@ inline Vec<D> spiky_gradient(const Vec<D>& d, double r, double h) {
 }
 
 /// viscosity kernel W (3-D: 15/(2π h³)(−r³/(2h³) + r²/h² + h/(2r) − 1); 2-D: the kernel whose 2-D
-/// Laplacian is exactly 40/(π h⁵)(h − r), EQUATIONS.md §1). Singular at r = 0; use it only through
+/// Laplacian is exactly 40/(π h⁵)(h − r), docs/equations.md §1). Singular at r = 0; use it only through
 /// its Laplacian.
 template <int D>
 inline double viscosity(double r, double h) {
