@@ -169,7 +169,7 @@ BOOST_AUTO_TEST_CASE(strain_rate_eq_9_of_a_linear_shear) {
 BOOST_AUTO_TEST_CASE(d_ij_eq_20_is_first_order_consistent) {
   // [thesis eq. 20] with gradients w.r.t. x_i: Σ_j d_ij ⊗ (x_j − x_i) ≈ I in the interior. A sign
   // error (the literal "∇W at x_j − x_i") would give −I. The spiky gradient is short by its lattice
-  // error: 11 % at h = 3 dx, 30 % at h = 2 dx (measured), which scales D and the rigid stress.
+  // error (about 11 % at h = 3 dx, 30 % at h = 2 dx), which scales D and the rigid stress.
   ParticleSet<2> ps = sand_lattice(11, 0.01, 3.0);
   NeighbourGrid<2> nb = neighbours_with_density(ps);
   const Mat<2> M = gradient_moment(ps, nb, centre_index(11));

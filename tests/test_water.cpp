@@ -134,7 +134,7 @@ BOOST_AUTO_TEST_CASE(pressure_force_eq_4_pushes_apart) {
 BOOST_AUTO_TEST_CASE(smallest_eigenvalue_closed_form_matches_iterative_solver) {
   // core/smallest_eigenvalue.hpp against Eigen's iterative QR solver, on random symmetric matrices
   // and on ones whose two smallest (or two largest) eigenvalues are a gap apart, from equal to
-  // well separated: within 1e-12 |S| (measured worst 3e-13 |S|, next to the switch to the solver).
+  // well separated: within 1e-12 |S|, also next to the switch to the solver.
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const auto reference = [](const auto& S) {

@@ -75,8 +75,8 @@ Mat<D> moment_matrix(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::
 /// Where the neighbourhood is incomplete (free surface) the moment matrix loses rank; there L_i
 /// blends continuously to I (the uncorrected kernel) as the smallest eigenvalue λ of the moment
 /// matrix falls from `full` to `none`: L = (1 − w) I + w M⁻¹, w = clamp((λ − none)/(full − none)).
-/// A hard switch makes surface particles flicker between the two forces (measured: surface
-/// speeds of 4 mm/s in the resting tank instead of 0.2 mm/s in the bulk).
+/// A hard switch would make surface particles flicker between the two forces and stir the surface
+/// of a resting tank (test water/correction_weight_is_the_clamped_smallest_eigenvalue).
 template <int D>
 Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i,
                            double none = 0.5, double full = 0.8) {

@@ -178,9 +178,9 @@ inline double viscosity_laplacian(double r, double h) {
 }
 
 /// Which kernel the density summation (eq 6) uses. Müller 2003 uses poly6; its flat top lets
-/// particles pair up under the stiff state equation that validation needs (measured: the
-/// hydrostatic tank at h = 3 dx blows up within 0.2 s), so the default is the spiky kernel, whose
-/// peak keeps particles apart. Both have the exact constants above.
+/// particles pair up under the stiff state equation that validation needs (the hydrostatic tank
+/// at h = 3 dx does not stay at rest with it), so the default is the spiky kernel, whose peak keeps
+/// particles apart. Both have the exact constants above.
 enum class DensityKernel { Poly6, Spiky };
 
 template <int D>
