@@ -711,7 +711,7 @@ BOOST_AUTO_TEST_CASE(rigid_sand_mushroom_stands_on_its_stem_at_the_thesis_step) 
   // A 0.2 x 0.3 m block of sand that never yields (c = 1e5 Pa) standing on a 0.02 m wide, 0.02 m
   // high stem on a rough two-layer floor, simulated at c = 10 m/s and the thesis' fixed step
   // 0.001 s: each stem grain carries about 300 times its own weight, 8x the Bell contact's
-  // per-grain stiffness at that step (the load that sank the thesis_winnie_box figure). Over 0.4 s
+  // per-grain stiffness at that step (the load under a sand sculpture on its feet). Over 0.4 s
   // the block stays one cluster, no stem grain comes closer to a floor grain than the contact
   // distance, and the block stays put: its centre moves less than 1e-3 spacings and ends at rest.
   const double dx = 0.01, s = sand_wall_contact_distance(dx);

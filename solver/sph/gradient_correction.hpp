@@ -28,8 +28,8 @@ inline bool positive_definite(const Mat<3>& A) {
 }
 
 /// The blend weight of gradient_correction: clamp((λ − none)/(full − none), 0, 1) for the smallest
-/// eigenvalue λ of the symmetric S, in closed form (core/smallest_eigenvalue.hpp; the iterative
-/// Eigen solver was a third of the correction's cost). Most particles are settled without it:
+/// eigenvalue λ of the symmetric S, in closed form (core/smallest_eigenvalue.hpp; cheaper than an
+/// iterative eigen-solver). Most particles are settled without it:
 /// λ > full when S − (full + δ) I is positive definite, λ < none when a diagonal entry is below
 /// none − δ (λ ≤ min_k S_kk). With δ = kMargin |S| far above the rounding of either test and of
 /// the closed form, the weight is the closed form's, bitwise: exactly 1 (or 0).

@@ -18,9 +18,8 @@ namespace sc::kernel {
 /// kRemembered distinct h seen: all particles of a uniform scene share h, an adaptive scene has a
 /// few per level (split and merge round h a few ulps apart), and std::pow with the division costs
 /// more than the rest of a kernel evaluation. With one slot, the pairs across levels (whose terms
-/// evaluate the kernel at both h_i and h_j) evicted it at every call (dam_break_adaptive: pow was
-/// 10 % of the run; with 4 slots the forces stage is 20 % cheaper). The value is computed by the
-/// same expression, so results are bitwise unchanged. (Each call site passes its own lambda, hence
+/// evaluate the kernel at both h_i and h_j) would evict it at every call. The value is computed by
+/// the same expression, so results do not depend on the cache. (Each call site passes its own lambda, hence
 /// its own cache.)
 inline constexpr int kRemembered = 4;
 template <class F>
@@ -62,8 +61,7 @@ inline double viscosity_laplacian(double h) {
 
 /// A support h with the kernel constants at it, looked up once: a loop over the pairs of particle
 /// i builds Support(h_i) before the loop and passes it to the kernels below, which then skip the
-/// lookup (the remembered search cost 3 % of thesis_duck's step). Same values, same bits as the
-/// forms taking h. Converts from h, so a single call may pass h itself.
+/// remembered search. Same values, same bits as the forms taking h. Converts from h, so a single call may pass h itself.
 template <int D>
 struct Support {
   double h, poly6, spiky, spiky_derivative, viscosity_laplacian;
