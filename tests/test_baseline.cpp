@@ -1,5 +1,5 @@
 // Regression baselines: the series difference (resampling, abscissa choice), the "regression"
-// block of a case file, and the acceptance test of issue 8: a copy of a case with its water
+// block of a case file, and the end-to-end check of a regression: a copy of a case with its water
 // viscosity doubled is reported as changed, with the delta on the front series, while an untouched
 // case is identical to its baseline; `sandcastle compare` of the two runs reports the same deltas.
 #include <boost/test/unit_test.hpp>

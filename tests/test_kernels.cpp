@@ -1,4 +1,4 @@
-// Kernels of Müller 2003 (EQUATIONS.md §1): normalisation, compact support, derivatives,
+// Kernels of Müller 2003 (docs/equations.md §1): normalisation, compact support, derivatives,
 // antisymmetry of the gradient, positivity of the viscosity Laplacian.
 #include <boost/test/unit_test.hpp>
 #include <gsl/gsl_integration.h>
@@ -90,7 +90,7 @@ BOOST_AUTO_TEST_CASE(gradient_is_antisymmetric_and_points_towards_neighbour) {
   const Vec<3> gij = kernel::spiky_gradient<3>(Vec<3>(xi - xj), r, h);
   const Vec<3> gji = kernel::spiky_gradient<3>(Vec<3>(xj - xi), r, h);
   BOOST_TEST((gij + gji).norm() == 0.0);
-  BOOST_TEST(gij.dot(xj - xi) > 0.0);  // gradW_ij points from i towards j (EQUATIONS.md §0)
+  BOOST_TEST(gij.dot(xj - xi) > 0.0);  // gradW_ij points from i towards j (docs/equations.md §0)
 }
 
 BOOST_AUTO_TEST_CASE(pair_average_of_equal_supports_has_the_bits_of_the_full_average) {

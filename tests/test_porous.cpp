@@ -332,8 +332,8 @@ BOOST_AUTO_TEST_CASE(a_fast_flow_keeps_the_wet_zone_under_the_pond_pressure) {
   // - the wet zone's P^p − P^c is one straight line (within 1 % of the pond's pressure), and the
   //   Darcy flux through it ([thesis eq. 27]) is the same in every row (1 %): the pore water is
   //   incompressible. Counting a particle saturated by its content at the end of the step (S >=
-  //   0.99) instead of by the water it held while passing the step's outflow on made the wet
-  //   zone "unsaturated" (P^p = 0) row by row: kinks of ~990 Pa, pore velocity 0.25-0.89 m/s.
+  //   0.99) instead of by the water it held while passing the step's outflow on would make the
+  //   wet zone "unsaturated" (P^p = 0) row by row, with kinks in the pressure and the flux.
   const PorousParams p = test_params();
   const Vec<2> g(0.0, -9.81);
   NeighbourGrid<2> nb;
@@ -449,7 +449,7 @@ BOOST_AUTO_TEST_CASE(a_large_emission_store_leaves_in_particles_of_at_most_a_ful
   // with 3.5 full water masses waiting in its emission store. Over 400 steps the stores leave as
   // new water particles of at most one full mass each (never one particle of 3.5 masses, which
   // would be 3.5x as dense as water), the total water stays constant to 1e-12, and the stores
-  // drain: less than half of what they held is left (a quarter, measured).
+  // drain: less than half of what they held is left.
   const Simulator<2> start = exchange_scene();
   const PorousParams p = test_params();
   ParticleSet<2> ps = start.particles();
@@ -497,7 +497,7 @@ BOOST_AUTO_TEST_CASE(results_do_not_depend_on_the_thread_count) {
 }
 
 BOOST_AUTO_TEST_CASE(green_ampt_worked_values) {
-  // REFERENCES.md §4: K = 1e-4 m/s, ψ = 0.10 m, Δθ = 0.3.
+  // docs/references.md §4: K = 1e-4 m/s, ψ = 0.10 m, Δθ = 0.3.
   const double t[] = {10.0, 60.0, 300.0, 1800.0};
   const double F[] = {8.426e-3, 23.167e-3, 64.386e-3, 246.646e-3};
   for (int k = 0; k < 4; ++k)
@@ -634,11 +634,11 @@ BOOST_AUTO_TEST_CASE(partial_water_takes_the_pressure_of_the_water_around_it) {
 BOOST_AUTO_TEST_CASE(partial_water_accelerates_like_a_full_particle_at_its_place) {
   // A parcel of 3 % of m0 (rest density ρ^f − (m0 − m) W(0, h), as porous_flow gives it) at the
   // centre of a full water lattice whose pressure is linear, p = 2000 + 5e4 x. Its own summation
-  // density is 394 kg/m^3, and with it (before set_partial_water_density) its volume m/ρ was 2.5
-  // times its share of the water and its pressure acceleration 93.7 m/s^2 against a full
-  // particle's 34.8 (2.7 times). With the density of a full particle at its place it has that
-  // particle's density (exactly, up to round-off) and its acceleration agrees within 10 % (36.9:
-  // its neighbours' densities still miss the parcel's absent mass, so their volumes are larger).
+  // density is far below ρ^f, so with it its volume m/ρ would be several times its share of the
+  // water and so would its pressure acceleration. With the density of a full particle at its place
+  // (set_partial_water_density) it has that particle's density (exactly, up to round-off) and its
+  // acceleration agrees within 10 % (its neighbours' densities still miss the parcel's absent
+  // mass, so their volumes are larger).
   const PorousParams p = test_params();
   ParticleSet<2> ps;
   add_block(ps, p, Phase::Water, {0.0, 0.0}, {0.13, 0.13}, 0.0);

@@ -74,7 +74,7 @@ void run_and_kill(const std::string& out, long kill_at) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   // Aim the kill at a moment a file is being written, for a short while only: the whole run takes
   // well under 1 s (a checkpoint every 5 steps is a few ms apart), so a long aim can outlast the
-  // 174 steps after the last kill (measured at 200 ms: the run ended first in 2 of 6 test runs).
+  // 174 steps after the last kill, and the run would end before the kill.
   const auto aim_until = std::chrono::steady_clock::now() + std::chrono::milliseconds(20);
   while (!writing(out) && std::chrono::steady_clock::now() < aim_until) {
   }

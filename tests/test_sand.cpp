@@ -169,7 +169,7 @@ BOOST_AUTO_TEST_CASE(strain_rate_eq_9_of_a_linear_shear) {
 BOOST_AUTO_TEST_CASE(d_ij_eq_20_is_first_order_consistent) {
   // [thesis eq. 20] with gradients w.r.t. x_i: Σ_j d_ij ⊗ (x_j − x_i) ≈ I in the interior. A sign
   // error (the literal "∇W at x_j − x_i") would give −I. The spiky gradient is short by its lattice
-  // error: 11 % at h = 3 dx, 30 % at h = 2 dx (measured), which scales D and the rigid stress.
+  // error (about 11 % at h = 3 dx, 30 % at h = 2 dx), which scales D and the rigid stress.
   ParticleSet<2> ps = sand_lattice(11, 0.01, 3.0);
   NeighbourGrid<2> nb = neighbours_with_density(ps);
   const Mat<2> M = gradient_moment(ps, nb, centre_index(11));
@@ -711,7 +711,7 @@ BOOST_AUTO_TEST_CASE(rigid_sand_mushroom_stands_on_its_stem_at_the_thesis_step) 
   // A 0.2 x 0.3 m block of sand that never yields (c = 1e5 Pa) standing on a 0.02 m wide, 0.02 m
   // high stem on a rough two-layer floor, simulated at c = 10 m/s and the thesis' fixed step
   // 0.001 s: each stem grain carries about 300 times its own weight, 8x the Bell contact's
-  // per-grain stiffness at that step (the load that sank the thesis_winnie_box figure). Over 0.4 s
+  // per-grain stiffness at that step (the load under a sand sculpture on its feet). Over 0.4 s
   // the block stays one cluster, no stem grain comes closer to a floor grain than the contact
   // distance, and the block stays put: its centre moves less than 1e-3 spacings and ends at rest.
   const double dx = 0.01, s = sand_wall_contact_distance(dx);

@@ -43,7 +43,7 @@ double kinetic_energy(const ParticleSet<2>& ps) { return 0.5 * ps.m[0] * ps.v[0]
 BOOST_AUTO_TEST_SUITE(wall_collision)
 
 BOOST_AUTO_TEST_CASE(slip_wall_stops_the_normal_velocity_and_keeps_the_tangential) {
-  // A particle 1 mm from the x+ wall at 7 m/s (the splash speed of thesis_bunny_winnie) crosses it
+  // A particle 1 mm from the x+ wall at 7 m/s (a splash speed of the thesis scenes) crosses it
   // within the step; it ends on the wall with v_n = 0 and its tangential velocity unchanged.
   const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
   ParticleSet<2>::VecArray start;
@@ -80,7 +80,7 @@ BOOST_AUTO_TEST_CASE(particle_driven_into_a_corner_ends_in_the_corner) {
 
 BOOST_AUTO_TEST_CASE(particle_created_inside_the_floor_layers_is_put_on_the_floor) {
   // Water the porous flow emits below a sand grain resting on the floor can start inside the wall's
-  // layers (thesis_bunny_winnie: one fell out of the tank at step 763); it is put on the floor.
+  // layers; it is put on the floor, not left to fall out of the tank.
   const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
   ParticleSet<2>::VecArray start;
   ParticleSet<2> ps = moved_particle(Vec<2>(0.4, -0.008), Vec<2>(0.5, -2.0), 0.001, start);
@@ -90,9 +90,9 @@ BOOST_AUTO_TEST_CASE(particle_created_inside_the_floor_layers_is_put_on_the_floo
 }
 
 BOOST_AUTO_TEST_CASE(particle_created_inside_the_floor_layers_and_driven_through_them_is_put_on_the_floor) {
-  // thesis_bunny_armadillos, step 1271: water emitted 8.1 mm deep into the floor's 20 mm layers got
-  // −14,000 m/s² from the wall and the sand above in its first step and ended 21.9 mm deep, behind
-  // the layers; it is put on the floor all the same, not left to fall out of the domain.
+  // Water emitted 8.1 mm deep into the floor's 20 mm layers is driven by the wall and the sand above
+  // to 21.9 mm deep in its first step, behind the layers; it is put on the floor all the same, not
+  // left to fall out of the domain.
   const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
   ParticleSet<2>::VecArray start;
   ParticleSet<2> ps = moved_particle(Vec<2>(0.23, -0.0081), Vec<2>(0.4, -13.8), 0.001, start);

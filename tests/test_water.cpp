@@ -134,7 +134,7 @@ BOOST_AUTO_TEST_CASE(pressure_force_eq_4_pushes_apart) {
 BOOST_AUTO_TEST_CASE(smallest_eigenvalue_closed_form_matches_iterative_solver) {
   // core/smallest_eigenvalue.hpp against Eigen's iterative QR solver, on random symmetric matrices
   // and on ones whose two smallest (or two largest) eigenvalues are a gap apart, from equal to
-  // well separated: within 1e-12 |S| (measured worst 3e-13 |S|, next to the switch to the solver).
+  // well separated: within 1e-12 |S|, also next to the switch to the solver.
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const auto reference = [](const auto& S) {
@@ -219,7 +219,7 @@ BOOST_AUTO_TEST_CASE(gradient_correction_is_exact_for_a_linear_field) {
 
 BOOST_AUTO_TEST_CASE(pressure_force_reproduces_linear_gradient) {
   // On a lattice with P = a·x, the corrected eq-4 force on an interior particle is −V_i a (the
-  // thesis' P_i + P_j form); Müller's (P_i + P_j)/2 gives half of it (EQUATIONS.md eq 4 discussion).
+  // thesis' P_i + P_j form); Müller's (P_i + P_j)/2 gives half of it (docs/equations.md, eq 4).
   const int n = 17;
   ParticleSet<2> ps = lattice(n, 0.01);
   const Vec<2> a(3000.0, -9810.0);

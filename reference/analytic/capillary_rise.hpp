@@ -1,4 +1,4 @@
-// Capillary fringe above a free water table (REFERENCES.md §5) [exact for the model's potential].
+// Capillary fringe above a free water table (docs/references.md §5) [exact for the model's potential].
 #pragma once
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Green-Ampt ponded infiltration (Green & Ampt 1911; REFERENCES.md §4) [exact for the sharp-front model].
+// Green-Ampt ponded infiltration (Green & Ampt 1911; docs/references.md §4) [exact for the sharp-front model].
 #pragma once
 #include <gsl/gsl_sf_gamma.h>
 #include <gsl/gsl_sf_lambert.h>

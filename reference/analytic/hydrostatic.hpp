@@ -1,4 +1,4 @@
-// Hydrostatic pressure in a resting column (REFERENCES.md §1) [exact].
+// Hydrostatic pressure in a resting column (docs/references.md §1) [exact].
 #pragma once
 
 namespace sc::analytic {

@@ -47,8 +47,7 @@ AdaptivitySpec read_adaptivity(JsonObject o, int dim);
 /// from lie within sqrt(D) cells of it, inside the band. Used as the clamp and reach elfs_max of the
 /// feature size (the narrow band: nodes further from the surface are not visited), so the
 /// propagations visit only the band in which a decision can change, and every decision is the one
-/// the unclamped elfs would give. (Was 2 beta r_max: for dam_break_adaptive 16 spacings instead of
-/// 7.7.) With max_level = min_level nothing splits or merges, and the band is 2 cells.
+/// the unclamped elfs would give. With max_level = min_level nothing splits or merges, and the band is 2 cells.
 template <int D>
 double decision_band(const AdaptiveParams& params, double r_min, double grid_cell);
 

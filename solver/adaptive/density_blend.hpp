@@ -1,9 +1,9 @@
-// Density blending across splits and merges (EQUATIONS.md §4.7: "blend the children in").
+// Density blending across splits and merges (docs/equations.md §4.7: "blend the children in").
 //
 // Summation density (eq 6) of a new arrangement differs from the old one by the kernel-sum error
 // of the arrangement: a merged pair at h = 2 dx reads ~5 % over rest density, its fine neighbours
 // ~1.3 % (spiky kernel, 2-D lattice). With a stiff equation of state (c = 15 m/s) that is ~10 kPa
-// against a hydrostatic 0.6 kPa, and the fluid explodes at the first pass. So at each pass every
+// against a hydrostatic 0.6 kPa, a pressure shock at the first pass. So at each pass every
 // moving particle gets an offset = (its density before the pass, carried through split and merge
 // as an intensive field) − (its summation density after the pass); the density used for the
 // pressure is summation + offset, and the offset decays as exp(−t/τ_blend). The new arrangement

@@ -1,4 +1,4 @@
-// Extended local feature size (Adams et al. 2007 as recalled in EQUATIONS.md §4.6) on a regular
+// Extended local feature size (Adams et al. 2007 as recalled in docs/equations.md §4.6) on a regular
 // background grid.
 //
 // What is computed, from a function f at the grid nodes that is negative inside the fluid:

@@ -44,7 +44,7 @@ struct AdaptiveParams {
 
 /// Throws std::invalid_argument unless 0 < alpha, beta >= 2^(1/D) alpha (no immediate re-merge
 /// of split children, no immediate re-split of a merged particle), min_level <= max_level and the
-/// remaining parameters are positive. In 3-D the bound is EQUATIONS.md §4.5's 2^(1/3) alpha; in
+/// remaining parameters are positive. In 3-D the bound is docs/equations.md §4.5's 2^(1/3) alpha; in
 /// 2-D the size ratio per level is 2^(1/2), so the bound is sqrt(2) alpha.
 template <int D>
 void check_params(const AdaptiveParams& params);

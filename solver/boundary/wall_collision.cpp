@@ -25,10 +25,9 @@ namespace {
 /// side's plane from the tank's side, or it ends within the wall's layers, or it started within them
 /// (emitted there by the porous flow at a sand particle on the floor) and ends behind the plane,
 /// however deep: in its first step the pressure of the wall and of the sand above can drive it
-/// through the rest of the layers (thesis_bunny_armadillos, step 1271: water of 14 % of m0 emitted
-/// 8.1 mm deep into the floor's 20 mm got −14,000 m/s² and ended 21.9 mm deep, where the layers' test
-/// no longer caught it; it left the domain at 14 m/s). And the crossing point (or b) lies in front
-/// of the wall.
+/// through the rest of the layers, where the layers' test alone would no longer catch it (test
+/// wall_collision/particle_created_inside_the_floor_layers_and_driven_through_them_is_put_on_the_floor).
+/// And the crossing point (or b) lies in front of the wall.
 template <int D>
 bool hits_wall(const TankWalls<D>& walls, const typename TankWalls<D>::Side& s, const Vec<D>& a, const Vec<D>& b) {
   const int k = s.axis;

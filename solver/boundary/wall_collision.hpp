@@ -10,11 +10,11 @@
 // rule for the tangential part: a slip wall keeps it, a no-slip (rough) wall takes it (the wall is at
 // rest). The contact plane is the wall's face (the tank's side), half a spacing in front of the first
 // layer of wall particles: a plane one particle radius further in (where the first fluid layer rests)
-// also caught the ordinary flow along the floor and, with the no-slip rule, stopped the front of
-// dam_break_square (front RMS 17.6 %, gate 10 %) and the runout of column_collapse (0.55 < 0.6).
-// With wall particles in front of every closed side, a particle only reaches the plane when
-// the pressure of a thin, fast sheet of water is too weak to stop it within one fixed step
-// (thesis_bunny_armadillos: water at 3 m/s and more passed the floor and the walls).
+// would also catch the ordinary flow along the floor and, with the no-slip rule, hold back the front
+// of a dam break and the runout of a granular collapse. With wall particles in front of every closed
+// side, a particle only reaches the plane when the pressure of a thin, fast sheet of water is too
+// weak to stop it within one fixed step (test
+// wall_collision/thrown_particle_never_leaves_a_slip_box_and_only_loses_energy).
 #pragma once
 #include <string>
 #include <vector>

@@ -21,9 +21,9 @@ inline double smallest_eigenvalue(const Mat<2>& S) {
 /// eigenvalues are q + 2p cos(φ + 2πk/3), φ = acos(det B/2)/3, the smallest at k = 1. Only the upper
 /// triangle is read. Where the two smallest eigenvalues nearly coincide (det B/2 → 1) acos
 /// amplifies the rounding of det B up to ~√ε p, so there (1 − det B/2 < kNearDouble) the iterative
-/// solver (Eigen's QR) is used instead; elsewhere the error is below 1e-12 |S| (measured worst
-/// 3e-13 |S|, next to the switch). Tested against the solver on random and near-degenerate matrices
-/// (tests/test_water.cpp).
+/// solver (Eigen's QR) is used instead; elsewhere the error is below 1e-12 |S|. Tested against the
+/// solver on random and near-degenerate matrices (test
+/// water/smallest_eigenvalue_closed_form_matches_iterative_solver).
 inline double smallest_eigenvalue(const Mat<3>& S) {
   constexpr double kNearDouble = 1e-6;
   const double q = (S(0, 0) + S(1, 1) + S(2, 2)) / 3.0;

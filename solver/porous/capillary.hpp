@@ -73,7 +73,7 @@ std::pair<Vec<D>, Vec<D>> porous_gradients(const ParticleSet<D>& ps, const Neigh
 
 /// Gradient of a porous field A at particle i [thesis eq. 22] (Lenaerts eq 3) over the neighbours
 /// j with `takes_part[j]`, with the spiky gradient of the neighbour's support h_j, taken with
-/// respect to x_i (EQUATIONS.md §0; the literal "∇W(x_j − x_i)" read as a function of x_j − x_i
+/// respect to x_i (docs/equations.md §0; the literal "∇W(x_j − x_i)" read as a function of x_j − x_i
 /// would flip the sign).
 /// - PorousGradient::Lenaerts: the printed form ∇A_i = Σ_j V_j A_j gradW_ij(h_j). It is correct in
 ///   the interior but gives a spurious gradient ~A/h at the edge of the porous body, also for a

@@ -25,7 +25,7 @@ struct ExchangeSlot {
 };
 
 /// Mass flow from `src` to `dst` before limiting [thesis eq. 28] and [thesis eq. 29], in the
-/// conserving upwind form 28′ of EQUATIONS.md (ours [I]), in kg/s:
+/// conserving upwind form 28′ of docs/equations.md (ours [I]), in kg/s:
 ///   Φ_{j→i} = L_ij · max(0, v_pj · (x_i − x_j)/r) · S_j^β · m_pj · V_i · ∇²W_visc(r, h̄),
 /// with h̄ = (h_i + h_j)/2 and L_ij = λ h̄. The net rate of i is Σ_j (Φ_{j→i} − Φ_{i→j}): what one
 /// particle gains its neighbour loses, so the water balance is exact.
@@ -96,9 +96,9 @@ double flux_length_factor(double dx, double h) {
 /// inflow at most its free room (capacity − m_p). Each pair flow is scaled by min(out of the
 /// source, in of the receiver), so the balance stays exact and 0 ≤ m_p ≤ capacity after the step.
 /// A particle that sends nothing keeps scale 1 even when round-off left its m_p a little below
-/// zero (the Euler step can give m_p ≈ −5e-20 kg): the ratio m_p/(outflow dt) would be 0/0 there,
-/// and that NaN spread through the pair flows into new water particles (thesis_duck with
-/// create_fraction 0.1, step 523).
+/// zero: the ratio m_p/(outflow dt) would be 0/0 there, and that NaN would spread through the pair
+/// flows into new water particles (test
+/// porous/limiters_eq_30_stay_finite_for_an_empty_particle_left_below_zero_by_round_off).
 inline double outflow_scale(double mass, double outflow, double dt) {
   return outflow > 0.0 && outflow * dt > mass ? std::max(0.0, mass) / (outflow * dt) : 1.0;
 }

@@ -7,7 +7,7 @@ namespace sc {
 /// Effective stress [thesis eq. 32] (Lenaerts eq 12): σ^eff = σ − η P^{p*} I with P^{p*} = k^p S,
 /// for Lenaerts' tension-positive elastic stress: the pore water pushes the skeleton apart.
 /// The thesis' sand has no elastic stress; its analogue for the compression-positive Zhu-Bridson
-/// friction and yield (eqs 8, 10) is Terzaghi's effective pressure (EQUATIONS.md 32):
+/// friction and yield (eqs 8, 10) is Terzaghi's effective pressure (docs/equations.md, eq 32):
 ///   p' = max(0, p − η k^p S),
 /// which the sand model uses in place of p, so wetter sand has less friction and yields earlier.
 /// Do not subtract η k^p S from the compression-positive σ_f directly (that would add pressure).

@@ -9,9 +9,8 @@
 namespace sc {
 
 /// A water particle is partial (a parcel) below this fraction of a full particle's mass. Particles
-/// that are nearly full keep the state equation: in darcy_column, where most of the pond above the
-/// bed is a little short of m0, treating every particle below m0 as a parcel left the pond without
-/// its stiffness and it was thrown out of the tank.
+/// that are nearly full keep the state equation: a pond over a porous bed is mostly a little short
+/// of m0, and treated as parcels it would lose its stiffness.
 inline constexpr double kPartialWaterFraction = 0.5;
 
 /// True for a water particle holding less than kPartialWaterFraction of a full particle's mass m0.
@@ -27,9 +26,9 @@ bool is_partial_water(const ParticleSet<D>& ps, std::size_t i, double full_mass)
 /// the thesis or Lenaerts et al. 2008: a partial particle is a parcel of the surrounding water, but
 /// its own summation density (eq 6) is dominated by its neighbours (its self term is small), so a
 /// neighbour closer than the lattice spacing drives ρ_i/ρ0_i far above 1 and the Tait pressure
-/// (×(ρ/ρ0)^7) with it. Measured in thesis_duck at the thesis step: a particle of 2 % of m0 read
-/// ρ/ρ0 = 1.67 among full water, p = 0.38 MPa against 10 kPa around it, and left at 20 m/s.
-/// Full particles keep their own pressure. Gather: reads the pressures of full particles only,
+/// (×(ρ/ρ0)^7) with it, far above the pressure of the water around it, which throws the parcel
+/// out (test porous/partial_water_takes_the_pressure_of_the_water_around_it). Full particles keep
+/// their own pressure. Gather: reads the pressures of full particles only,
 /// writes those of partial ones.
 template <int D>
 void set_partial_water_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double full_mass) {
@@ -54,12 +53,12 @@ void set_partial_water_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, 
 /// volume m_i/ρ_i in the pressure, viscosity and contact sums is the share of the water it is a
 /// parcel of, and its acceleration F_i/m_i = (V_i/m_i) Σ_j V_j (P_i + P_j) ∇W_ij (eq 4) is that of
 /// a full particle at the same place. Ours, not in the thesis or Lenaerts et al. 2008. Its own sum
-/// lacks most of the self term, and among sand or at the free surface it has few water neighbours:
-/// measured in thesis_bunny_armadillos (t = 1.2-1.26 s), parcels of 0.3-4 % of m0 next to the
-/// bunny's foot read ρ_i = 2-130 kg/m^3, so V_i was up to a full particle's volume for a few percent
-/// of its mass; the pressure of the sand and of the water around them gave 2,000-20,000 m/s² (10 to
-/// 500 times what this density gives) and threw them off at 8-27 m/s. Call after the pressures are set (a
-/// parcel without full neighbours keeps the state-equation pressure of its own ρ_i/ρ0_i).
+/// lacks most of the self term, and among sand or at the free surface it has few water neighbours,
+/// so its own summation density can be a small fraction of ρ^f and its volume m_i/ρ_i as large as
+/// a full particle's for a few percent of the mass: the pressure around it would then accelerate it
+/// far more than a full particle (test porous/partial_water_accelerates_like_a_full_particle_at_its_place).
+/// Call after the pressures are set (a parcel without full neighbours keeps the state-equation
+/// pressure of its own ρ_i/ρ0_i).
 template <int D>
 void set_partial_water_density(ParticleSet<D>& ps, double full_mass, double fluid_density) {
   const auto n = static_cast<std::int64_t>(ps.size());

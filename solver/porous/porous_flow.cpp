@@ -72,12 +72,11 @@ void mark_participant(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, cons
 /// passed this step's outflow on: m_p after the step plus that outflow, i.e. m_p before it plus the
 /// step's inflow. A particle in the wet zone of a flow passes |v_p| Δt / dx of its pores per step,
 /// and the explicit limited update (eqs 28′-30) leaves it about that much short of full at the
-/// end of the step; counted by its content after the step, the wet zone turned "unsaturated"
-/// wherever that exceeded 1 − kSaturated (pore velocity 0.4 m/s at Δt = 2.5e-4 s and dx = 5 mm:
-/// 2 %), its pressure was set to 0 there, the pond's pressure no longer reached the front and
-/// the error grew with refinement at a fixed step (green_ampt: 4.5 % at dx = 10 mm, 15 % at 5 mm;
-/// tests/test_porous.cpp pins it). A draining particle still turns unsaturated: its inflow does
-/// not make up what it loses.
+/// end of the step. Counted by its content after the step, the wet zone would turn "unsaturated"
+/// wherever |v_p| Δt / dx exceeds 1 − kSaturated, its pressure would be set to 0 there and the
+/// pond's pressure would not reach the front, an error that grows with refinement at a fixed step
+/// (test porous/a_fast_flow_keeps_the_wet_zone_under_the_pond_pressure). A draining particle still
+/// turns unsaturated: its inflow does not make up what it loses.
 template <int D>
 PressureRole pressure_role(const ParticleSet<D>& ps, const PorousWork<D>& w, std::size_t i) {
   if (!w.porous[i]) return PressureRole::None;
@@ -386,8 +385,8 @@ void diffuse_literal(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double dt, 
 /// Rest density of a water particle whose own mass m differs from a full particle's m0 (ours [I]):
 /// ρ0_i = ρ^f − (m0 − m_i) W(0, h_i). In the density sum of eq 6 the self term m_i W(0, h) is most
 /// of ρ (about 80 % with the spiky kernel at h = 2 dx), so without this a half-absorbed particle
-/// sits deep in tension, has zero pressure and lets the pond sink into the porous bed (measured in
-/// darcy_column); with it the particle is at rest where a full one would be.
+/// sits deep in tension, has zero pressure and lets the pond sink into the porous bed; with it the
+/// particle is at rest where a full one would be.
 template <int D>
 void rest_density_of_water(ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w) {
   const double self = kernel::density_kernel<D>(p.density_kernel, 0.0, p.water_support);
@@ -423,9 +422,9 @@ std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const P
 /// Creates water particles from full emission stores at targets free of any particle (a store
 /// whose target still holds departing water waits); returns stores of particles that are no
 /// longer exposed to m_p (as far as they have room). A new particle takes at most one full water
-/// particle's mass; the rest of the store waits for the next free target. (A store that had
-/// waited long used to leave in one particle: in bunny_armadillos some of 5.8 full masses, rest
-/// density about 3,300 kg/m³, which sank like stones.) Serial, index order.
+/// particle's mass; the rest of the store waits for the next free target, so a store that waited
+/// long does not leave as one heavy particle that sinks through the water (test
+/// porous/a_large_emission_store_leaves_in_particles_of_at_most_a_full_mass). Serial, index order.
 template <int D>
 std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w) {
   std::size_t count = 0;

@@ -12,8 +12,8 @@
 // Deviation from Lenaerts (who also scale the support with the radius): the support radius stays
 // that of a full particle. With the gather density of eq 6, ρ_i = Σ_j m_j W(r, h_i), a particle
 // with a shrunken h_i next to a full one sees m0 W(r, h_i) ~ (m0/m_i) ρ0 and the Tait pressure
-// explodes (measured: the exchange unit test blew up at step 682); a shrinking support needs the
-// scatter density Σ_j m_j W(r, h_j), which the solver does not use.
+// explodes; a shrinking support needs the scatter density Σ_j m_j W(r, h_j), which the solver
+// does not use.
 //
 // Emission into empty space (Lenaerts §4.2): a porous particle whose pore velocity points to an
 // empty place one spacing away (no particle within 0.8 spacing) and whose capillary suction is

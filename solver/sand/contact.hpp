@@ -26,8 +26,9 @@ inline double stable_contact_omega_dt(double zeta) { return 2.0 * (std::sqrt(1.0
 /// frequency ω = c/s of a sound wave over one spacing and the damping ratio ζ, but at most 0.8 of
 /// the explicit stability limit stable_contact_omega_dt(ζ)/Δt of the step Δt. The cap is ours
 /// (Bell et al. 2005 leave k_r free): at the thesis' step 0.001 s with c = 20 m/s and s = 0.0093 m,
-/// c/s Δt = 2.1 > 1.24, and a sand grain on the floor gained energy at every bounce until the duck
-/// of thesis_duck blew up. With a CFL step (c Δt/s ≤ 0.4) the cap never acts.
+/// c/s Δt = 2.1 > 1.24, and without the cap a sand grain on the floor gains energy at every bounce
+/// (test sand/wall_contact_at_the_thesis_step_only_removes_energy). With a CFL step (c Δt/s ≤ 0.4)
+/// the cap never acts.
 inline ContactLaw contact_law(double mi, double mj, double s, double sound_speed, double zeta, double mu, double dt) {
   const double m = mj > 0.0 ? mi * mj / (mi + mj) : mi;
   const double omega = std::min(sound_speed / s, 0.8 * stable_contact_omega_dt(zeta) / dt);

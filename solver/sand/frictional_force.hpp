@@ -6,7 +6,7 @@
 namespace sc {
 
 /// Force on particle i of the pair (i, j) from the frictional stresses of both [thesis eq. 19],
-/// with d_ij of [thesis eq. 20], in newtons (corrected form 19′ of EQUATIONS.md):
+/// with d_ij of [thesis eq. 20], in newtons (corrected form 19′ of docs/equations.md):
 ///   the force on j from i's stress is f_ji = −V_i Σ_i d_ij and i takes the reaction −Σ_j f_ji, so
 ///   f_i ← −V_j Σ_j d_ji + V_i Σ_i d_ij,
 /// where Σ = −σ_f is the stress in the tension-positive convention. Errata of eq 19: (a) it is

@@ -14,7 +14,7 @@ namespace sc {
 /// "stress"; (b) it writes √(|D|_F/3) where Zhu & Bridson have √(1/3)·|D|_F (the printed form is not
 /// even homogeneous in D). μ_f = sin φ. Hence |σ_f|_F = √3 sin φ p for every D ≠ 0, independent of
 /// the magnitude of D (rate independent). ZB's constant is kept for fidelity although √3 σ̄ of this
-/// stress is (3/√2) sin φ p, not the yield value sin φ p of eq 10 (EQUATIONS.md 8d).
+/// stress is (3/√2) sin φ p, not the yield value sin φ p of eq 10 (docs/equations.md, eq 8, erratum 8d).
 template <int D>
 inline Mat<D> frictional_stress(const Mat<D>& strain_rate, double pressure, double sin_phi, double tiny = 1e-12) {
   const double norm = strain_rate.norm();  // Frobenius

@@ -74,8 +74,8 @@ struct ContactRow {
 /// Contacts whose gap a member cannot close within the step at this many times the largest point
 /// speed of the cluster's unconstrained motion are left out of the sweeps: their impulse would stay
 /// zero (the impulses of resting contact only take kinetic energy out of the body). Without this
-/// every wall particle within a member's support was a contact, the sweeps ran to their limit over
-/// tens of thousands of them, and the thesis_duck step took 54 ms more.
+/// every wall particle within a member's support would be a contact, and the sweeps would run to
+/// their limit over tens of thousands of them.
 constexpr double kContactReachFactor = 2.0;
 
 /// Clusters of at least this many members have their contacts gathered by chunks of kChunk

@@ -5,10 +5,11 @@
 //
 // Why: a rigid cluster keeps its inter-particle distances, so its own pressure cannot rise to carry
 // it; only the pair forces of the wall particles can (the extrapolated wall pressure and the Bell
-// contact, whose stiffness is set per particle). Under a tall cluster these are far too soft: the
-// 0.75 m sand figure of thesis_winnie_box stands on 73 grains, 8 N each, a Bell overlap of half a
-// spacing; the whole cluster fell freely until the overlap built up, bounced on springs with a
-// cluster damping ratio of 0.02 and went through the two wall layers (measured: 6 cm by t = 0.2 s).
+// contact, whose stiffness is set per particle). Under a tall cluster resting on a few grains these
+// are far too soft: each grain carries many times its own weight, the per-grain contact needs an
+// overlap of a large part of a spacing to do so, and the cluster sinks through the wall layers
+// (tests sand/rigid_block_resting_on_a_floor_is_carried_by_its_wall_contacts and
+// sand/rigid_sand_mushroom_stands_on_its_stem_at_the_thesis_step).
 #pragma once
 #include <cmath>
 #include <span>
@@ -60,10 +61,9 @@ struct ContactImpulse {
 /// motion by at most `tolerance` times what all sweeps changed it (both measured as the largest
 /// change of a contact point's velocity, |Δv| + |Δω| max|r_k|), or `max_sweeps`. The stop is on the
 /// body's motion, which is unique, not on the impulses, which are not: a body on more contacts than
-/// its degrees of freedom (thesis_duck: 337 contacts, 6 freedoms) has many impulse sets with the
-/// same motion, and the sweeps keep moving load among them long after the motion has converged
-/// (the duck at rest: its velocity settled to 1e-11 of the change within 50 sweeps while the
-/// impulses still moved by 5e-3 of the largest at the old limit of 200 sweeps). The walls are fixed, so
+/// its degrees of freedom (a sculpture on hundreds of floor contacts has 6) has many impulse sets
+/// with the same motion, and the sweeps keep moving load among them long after the motion has
+/// converged (test sand/wall_contact_sweeps_stop_when_the_motion_has_converged). The walls are fixed, so
 /// the impulses change the cluster's momentum and angular momentum (motion.momentum,
 /// motion.angular_momentum, motion.velocity, motion.omega); they only remove kinetic energy.
 /// `spins`: whether the body can rotate (false for a single particle, as in rigid_motion).

@@ -45,8 +45,9 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
 
 /// Adds the frictional force between sand particles (eq 19′) of the stresses Σ = −σ_f, with the
 /// symmetrised kernel-gradient correction (L_i + L_j)/2 of the pressure force when `correction` is
-/// filled: the spiky gradient alone is 30 % short at h = 2 dx (tests/test_sand.cpp), which weakens
-/// friction by as much (measured: a φ = 30° pile stood at 23°). The pair term stays antisymmetric.
+/// filled: the spiky gradient alone underestimates gradients on a lattice at h = 2 dx (test
+/// sand/d_ij_eq_20_is_first_order_consistent), which weakens friction by as much and lowers the
+/// angle of repose. The pair term stays antisymmetric.
 template <int D>
 void add_frictional_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const MatArray<D>& stress,
                            const MatArray<D>& correction);
@@ -71,9 +72,9 @@ void add_water_sand_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, cons
 /// exchange) the Bell contact force of its non-porous wall neighbours, with the contact law of sand
 /// against walls (ours). A partial particle carries the pressure of the water around it
 /// (set_partial_water_pressure), not the stiff pressure of its own compression that holds a full
-/// particle off a wall, so without the contact parcels pushed down by the sand sank through the
-/// floor (measured in thesis_duck at the thesis step: 17 % of m0, both wall layers passed at
-/// 1.3 m/s). A fixed porous bed takes the parcel in instead.
+/// particle off a wall, so without the contact parcels pushed down by the sand would sink through
+/// the floor (test sand/partial_water_is_held_off_solid_walls_only). A fixed porous bed takes the
+/// parcel in instead.
 template <int D>
 void add_partial_water_wall_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandParams& sand,
                                     double sound_speed, double dt, double full_water_mass);

@@ -7,7 +7,7 @@
 
 namespace sc {
 
-/// d_ij = V_j ∇W(x_j − x_i, h_j) [thesis eq. 20], read with the convention of EQUATIONS.md §0:
+/// d_ij = V_j ∇W(x_j − x_i, h_j) [thesis eq. 20], read with the convention of docs/equations.md §0:
 /// the gradient is taken with respect to x_i, so d_ij = V_j gradW_ij(h_j) points from i towards j
 /// (erratum 20: evaluating a gradient function literally at x_j − x_i flips the sign).
 /// `d` is x_i − x_j. Spiky kernel gradient.
@@ -16,7 +16,7 @@ inline Vec<D> d_ij(double Vj, const Vec<D>& d, double r, const kernel::Support<D
   return Vj * kernel::spiky_gradient<D>(d, r, sj);
 }
 
-/// Velocity gradient [thesis eq. 9] (corrected form 9′ of EQUATIONS.md):
+/// Velocity gradient [thesis eq. 9] (corrected form 9′ of docs/equations.md):
 ///   G_i = ∇v_i = Σ_j V_j (v_j − v_i) ⊗ gradW_ij(h_j),   (row: velocity component, column: ∂/∂x)
 /// over the sand neighbours j of sand particle i, for the velocity field `v` (default: ps.v). Errata of eq 9: (a) the thesis omits −v_i, so a
 /// uniform translation would show a gradient wherever the neighbourhood is not symmetric (free

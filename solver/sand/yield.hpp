@@ -35,12 +35,12 @@ inline Mat<D> rigid_stress(const Mat<D>& strain_rate, double density, double len
 }
 
 /// Strength factor k of the yield test: the factor on sin φ σ_m in eq 10 for each yield surface.
-/// The flowing stress σ_f of eq 8 (traceless D) has √3 σ̄_f = (3/√2) sin φ p (EQUATIONS.md 8d), so
-/// with k = 1 (eq 10 as printed) the stress of yielding sand lies 3/√2 ≈ 2.12 times outside the
+/// The flowing stress σ_f of eq 8 (traceless D) has √3 σ̄_f = (3/√2) sin φ p (docs/equations.md,
+/// eq 8, erratum 8d), so with k = 1 (eq 10 as printed) the stress of yielding sand lies 3/√2 ≈ 2.12 times outside the
 /// yield surface. Then a slope stands statically only while sin θ < sin φ/√3 (θ < 16.8° for
 /// φ = 30°, the Mohr circle of a slope with σ̄/σ_m ≥ sin θ), although flowing sand stops on slopes up
-/// to tan θ = √(3/2) sin φ (31.5°): between the two the flanks of a pile never turn rigid and creep
-/// (measured: a φ = 30° pile at 26.6° and still moving). k = 3/√2 puts eq 10's yield surface on the
+/// to tan θ = √(3/2) sin φ (31.5°): between the two the flanks of a pile never turn rigid and keep
+/// creeping (the angle_of_repose case). k = 3/√2 puts eq 10's yield surface on the
 /// flowing stress of eq 8 (sand yields exactly when friction can no longer supply the stress that
 /// would stop it, the consistency of a rigid-plastic model), so the repose angle is the angle where
 /// flow stops, tan θ_r = √(3/2) sin φ (within 1.7° of φ for φ in [20°, 35°]).
@@ -52,7 +52,7 @@ inline double yield_strength_factor(YieldSurface surface) {
 ///   √3 σ̄ < k sin φ σ_m + c,
 /// evaluated for σ = p I + σ_rigid (compression positive), with the strength factor k of
 /// yield_strength_factor (k = 1: eq 10 as printed by the thesis and Zhu & Bridson). Interpretation
-/// (EQUATIONS.md 10): the mean stress must include the pressure p; σ_rigid alone is nearly traceless,
+/// (docs/equations.md, eq 10): the mean stress must include the pressure p; σ_rigid alone is nearly traceless,
 /// so without p nothing would ever be rigid without cohesion (the bug of the public Taichi code).
 /// c ≥ 0 is the cohesion [Pa].
 template <int D>

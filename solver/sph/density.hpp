@@ -30,10 +30,9 @@ double interpolate(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::sp
 ///   wall built for water is not deficient;
 /// - water next to sand: the grain's volume m_j/ρ0_j at the water's rest density ρ^w (after
 ///   Solenthaler & Pajarola 2008, density-contrast SPH). Counted by mass, a water particle resting
-///   on a sand bed read up to (1 + 2.65)/2 of its rest density, an interface 2.65x stiffer than
-///   the water the step is limited for: water squeezed between grains was shot off at 5 m/s and
-///   left the domain (wet_sand_collapse, measured); in thesis_duck a small water particle released
-///   by the porous flow read ρ/ρ0 = 2.8 beside sand, 6.9 MPa, and left at 180 m/s. ρ^w, not the
+///   on a sand bed would read up to (1 + 2.65)/2 of its rest density, an interface 2.65x stiffer
+///   than the water the step is limited for, which shoots water squeezed between grains away
+///   (test water/density_eq_6_of_water_on_sand_counts_the_grains_by_volume). ρ^w, not the
 ///   particle's own ρ0_i, which porous flow lowers as a water particle drains.
 /// Water keeps a wall's own mass (walls are built for water).
 template <int D>

@@ -28,8 +28,8 @@ inline bool positive_definite(const Mat<3>& A) {
 }
 
 /// The blend weight of gradient_correction: clamp((λ − none)/(full − none), 0, 1) for the smallest
-/// eigenvalue λ of the symmetric S, in closed form (core/smallest_eigenvalue.hpp; the iterative
-/// Eigen solver was a third of the correction's cost). Most particles are settled without it:
+/// eigenvalue λ of the symmetric S, in closed form (core/smallest_eigenvalue.hpp; cheaper than an
+/// iterative eigen-solver). Most particles are settled without it:
 /// λ > full when S − (full + δ) I is positive definite, λ < none when a diagonal entry is below
 /// none − δ (λ ≤ min_k S_kk). With δ = kMargin |S| far above the rounding of either test and of
 /// the closed form, the weight is the closed form's, bitwise: exactly 1 (or 0).
@@ -75,8 +75,8 @@ Mat<D> moment_matrix(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::
 /// Where the neighbourhood is incomplete (free surface) the moment matrix loses rank; there L_i
 /// blends continuously to I (the uncorrected kernel) as the smallest eigenvalue λ of the moment
 /// matrix falls from `full` to `none`: L = (1 − w) I + w M⁻¹, w = clamp((λ − none)/(full − none)).
-/// A hard switch makes surface particles flicker between the two forces (measured: surface
-/// speeds of 4 mm/s in the resting tank instead of 0.2 mm/s in the bulk).
+/// A hard switch would make surface particles flicker between the two forces and stir the surface
+/// of a resting tank (test water/correction_weight_is_the_clamped_smallest_eigenvalue).
 template <int D>
 Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i,
                            double none = 0.5, double full = 0.8) {

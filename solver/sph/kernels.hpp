@@ -1,7 +1,7 @@
 // Smoothing kernels of Müller, Charypar & Gross 2003 in 2-D and 3-D, with the exact constants of
-// shared/design/EQUATIONS.md §1 (each derived from the normalisation ∫W dV = 1).
+// docs/equations.md §1 (each derived from the normalisation ∫W dV = 1).
 //
-// Conventions (EQUATIONS.md §0): `d` is x_i - x_j and r = |d|. Every gradient is the gradient with
+// Conventions (docs/equations.md §0): `d` is x_i - x_j and r = |d|. Every gradient is the gradient with
 // respect to x_i, gradW_ij = W'(r) d / r, which points from i towards j (W' < 0). All kernels vanish
 // for r >= h.
 //
@@ -18,9 +18,8 @@ namespace sc::kernel {
 /// kRemembered distinct h seen: all particles of a uniform scene share h, an adaptive scene has a
 /// few per level (split and merge round h a few ulps apart), and std::pow with the division costs
 /// more than the rest of a kernel evaluation. With one slot, the pairs across levels (whose terms
-/// evaluate the kernel at both h_i and h_j) evicted it at every call (dam_break_adaptive: pow was
-/// 10 % of the run; with 4 slots the forces stage is 20 % cheaper). The value is computed by the
-/// same expression, so results are bitwise unchanged. (Each call site passes its own lambda, hence
+/// evaluate the kernel at both h_i and h_j) would evict it at every call. The value is computed by
+/// the same expression, so results do not depend on the cache. (Each call site passes its own lambda, hence
 /// its own cache.)
 inline constexpr int kRemembered = 4;
 template <class F>
@@ -62,8 +61,7 @@ inline double viscosity_laplacian(double h) {
 
 /// A support h with the kernel constants at it, looked up once: a loop over the pairs of particle
 /// i builds Support(h_i) before the loop and passes it to the kernels below, which then skip the
-/// lookup (the remembered search cost 3 % of thesis_duck's step). Same values, same bits as the
-/// forms taking h. Converts from h, so a single call may pass h itself.
+/// remembered search. Same values, same bits as the forms taking h. Converts from h, so a single call may pass h itself.
 template <int D>
 struct Support {
   double h, poly6, spiky, spiky_derivative, viscosity_laplacian;
@@ -153,7 +151,7 @@ inline Vec<D> spiky_gradient(const Vec<D>& d, double r, double h) {
 }
 
 /// viscosity kernel W (3-D: 15/(2π h³)(−r³/(2h³) + r²/h² + h/(2r) − 1); 2-D: the kernel whose 2-D
-/// Laplacian is exactly 40/(π h⁵)(h − r), EQUATIONS.md §1). Singular at r = 0; use it only through
+/// Laplacian is exactly 40/(π h⁵)(h − r), docs/equations.md §1). Singular at r = 0; use it only through
 /// its Laplacian.
 template <int D>
 inline double viscosity(double r, double h) {
@@ -178,9 +176,9 @@ inline double viscosity_laplacian(double r, double h) {
 }
 
 /// Which kernel the density summation (eq 6) uses. Müller 2003 uses poly6; its flat top lets
-/// particles pair up under the stiff state equation that validation needs (measured: the
-/// hydrostatic tank at h = 3 dx blows up within 0.2 s), so the default is the spiky kernel, whose
-/// peak keeps particles apart. Both have the exact constants above.
+/// particles pair up under the stiff state equation that validation needs (the hydrostatic tank
+/// at h = 3 dx does not stay at rest with it), so the default is the spiky kernel, whose peak keeps
+/// particles apart. Both have the exact constants above.
 enum class DensityKernel { Poly6, Spiky };
 
 template <int D>

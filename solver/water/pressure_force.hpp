@@ -7,16 +7,16 @@ namespace sc {
 /// Pressure force on particle i from j [thesis eq. 4] (symmetrised over both supports after
 /// Desbrun & Cani / Adams 2007), in newtons:
 ///   f_ij = −V_i V_j (P_i + P_j) · (∇W_spiky(h_i) + ∇W_spiky(h_j))/2,
-/// with d = x_i − x_j and gradients taken with respect to x_i (EQUATIONS.md §0), so a positive
+/// with d = x_i − x_j and gradients taken with respect to x_i (docs/equations.md §0), so a positive
 /// pressure pushes the particles apart and f_ji = −f_ij (Newton's third law).
 ///
-/// On the factor 2 (EQUATIONS.md lists the thesis' missing 1/2 as erratum 4a): we keep the thesis
+/// On the factor 2 (docs/equations.md lists the thesis' missing 1/2 as erratum 4a): we keep the thesis
 /// form, because it is the one that is consistent. Writing P_j = P_i + δ_j,
 ///   Σ_j V_j (P_i + P_j) ∇W_ij = 2 P_i Σ_j V_j ∇W_ij + Σ_j V_j δ_j ∇W_ij ≈ 0 + ∇P
 /// in the interior, which is the standard symmetric SPH form (Monaghan 1992, m_i m_j (P_i/ρ_i² +
 /// P_j/ρ_j²) at equal densities). Müller 2003's average (P_i + P_j)/2 gives only ∇P/2: a column at
-/// rest then carries twice the hydrostatic pressure (measured: 2.3x before this choice). The unit
-/// test "pressure_force_reproduces_linear_gradient" pins this. `mueller_half` = true selects
+/// rest then carries twice the hydrostatic pressure. The unit test
+/// water/pressure_force_reproduces_linear_gradient pins this. `mueller_half` = true selects
 /// Müller's halved form (documented switch, for comparison only). `si`: the support h_i.
 template <int D>
 inline Vec<D> pressure_pair_force(double Vi, double Vj, double Pi, double Pj, const Vec<D>& d, double r,

@@ -8,7 +8,7 @@ namespace sc {
 /// a_i = −(κ/m_i) Σ_j m_j (x_i − x_j) W(|x_ij|, h). Their pair force −κ m_j (x_i − x_j) W is
 /// antisymmetric only for equal masses; adaptive sampling breaks that, so this uses the symmetric
 /// variant f_ij = −κ' m_i m_j (x_i − x_j) W_poly6(|x_ij|, h̄), h̄ = (h_i + h_j)/2, κ' = κ/m_ref,
-/// which equals Becker & Teschner for uniform mass m_ref (EQUATIONS.md, "Surface tension").
+/// which equals Becker & Teschner for uniform mass m_ref (docs/equations.md, "Surface tension").
 /// `si`: the support h_i (h̄ = h_i exactly when h_j = h_i).
 template <int D>
 inline Vec<D> surface_tension_pair_force(double kappa_prime, double mi, double mj, const Vec<D>& d, double r,

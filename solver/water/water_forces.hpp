@@ -28,7 +28,7 @@ void add_water_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Wate
 
 /// Momentum balance [thesis eq. 2] ρ Dv/Dt = −∇P + ρg + μ∇²v, discretised per particle as
 /// [thesis eq. 3] ρa = f^pressure + f^external + f^viscosity. Eq 3 is written per unit volume while
-/// eqs 4 and 5 are forces in newtons (EQUATIONS.md eq 3): the acceleration is a_i = F_i/m_i with
+/// eqs 4 and 5 are forces in newtons (docs/equations.md, eq 3): the acceleration is a_i = F_i/m_i with
 /// F_i = Σ_j (f_ij^p + f_ij^v) + m_i g + F_i^surface, with no second division by ρ.
 template <int D>
 inline Vec<D> acceleration(const Vec<D>& total_force, double mass) {
