@@ -11,11 +11,10 @@
 
 #include "data_root.hpp"
 #include "io/atomic_file.hpp"
+#include "method/registry.hpp"
 #include "observer.hpp"
 #include "progress.hpp"
 #include "runner.hpp"
-#include "scene/scene_builder.hpp"
-#include "simulator/simulator.hpp"
 
 namespace fs = std::filesystem;
 
@@ -45,18 +44,19 @@ double quantile(std::vector<double> v, double q) {
 }
 
 template <int D>
-json count_phases(const ParticleSet<D>& ps) {
+json count_phases(const ParticleView<D>& view) {
   std::map<std::string, long> n;
-  for (std::size_t i = 0; i < ps.size(); ++i) ++n[std::string(phase_name(ps.phase_of(i)))];
-  return json{{"water", n["water"]}, {"sand", n["sand"]}, {"boundary", n["boundary"]}, {"total", ps.size()}};
+  for (std::size_t i = 0; i < view.size(); ++i) ++n[std::string(phase_name(view.phase_of(i)))];
+  return json{{"water", n["water"]}, {"sand", n["sand"]}, {"boundary", n["boundary"]}, {"total", view.size()}};
 }
 
 /// Runs `steps` steps of one scene, timing each, and returns its bench.json entry.
 template <int D>
 json bench_scene(const CaseSpec& spec, double dx, long steps) {
-  Simulator<D> sim(build_scene<D>(spec, dx), SimulationParams::from_case(spec, dx));
-  json entry{{"scene", spec.name}, {"spacing", dx}, {"particles", count_phases(sim.particles())}};
-  sim.timers().reset();
+  const std::unique_ptr<Method<D>> method = make_method<D>(spec, dx);
+  Method<D>& sim = *method;
+  json entry{{"scene", spec.name}, {"method", spec.method}, {"spacing", dx}, {"particles", count_phases(sim.particles())}};
+  sim.reset_stage_times();
   std::vector<double> ms;
   Progress progress(spec.name, steps * spec.dt_max);
   const auto start = std::chrono::steady_clock::now();
@@ -70,9 +70,9 @@ json bench_scene(const CaseSpec& spec, double dx, long steps) {
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   json stages = json::object();
   double staged = 0.0;
-  for (std::size_t s = 0; s < stage_names.size(); ++s) {
-    const double per_step = 1e3 * sim.timers().seconds(static_cast<Stage>(s)) / steps;
-    stages[std::string(stage_names[s])] = per_step;
+  for (const StageTime& s : sim.stage_times()) {
+    const double per_step = 1e3 * s.seconds / steps;
+    stages[s.name] = per_step;
     staged += per_step;
   }
   stages["other"] = std::max(0.0, 1e3 * total / steps - staged);
@@ -80,12 +80,13 @@ json bench_scene(const CaseSpec& spec, double dx, long steps) {
   entry["ms_per_step"] = {{"median", quantile(ms, 0.5)}, {"q1", quantile(ms, 0.25)}, {"q3", quantile(ms, 0.75)},
                           {"min", quantile(ms, 0.0)},    {"max", quantile(ms, 1.0)},  {"mean", 1e3 * total / steps}};
   entry["stage_ms_per_step"] = stages;
-  entry["checksum"] = sim.particles().checksum();
+  entry["checksum"] = sim.checksum();
   entry["final_particles"] = count_phases(sim.particles());
   return entry;
 }
 
 json bench_any(const CaseSpec& spec, double dx, long steps) {
+  check_method(spec);
   return spec.dimension == 2 ? bench_scene<2>(spec, dx, steps) : bench_scene<3>(spec, dx, steps);
 }
 

@@ -8,6 +8,7 @@
 #include "compare.hpp"
 #include "data_root.hpp"
 #include "io/atomic_file.hpp"
+#include "method/registry.hpp"
 #include "bench.hpp"
 #include "report.hpp"
 #include "runner.hpp"
@@ -24,8 +25,8 @@ const CLI::Validator output_folder(
     "FOLDER");
 
 int run_command(const std::string& case_file, const std::string& out_dir, const std::string& tier, double spacing,
-                long checkpoint_every, const std::string& resume_from, double max_particles) {
-  const sc::CaseSpec spec = sc::load_case(case_file);
+                long checkpoint_every, const std::string& resume_from, const std::string& method, double max_particles) {
+  const sc::CaseSpec spec = sc::with_method(sc::load_case(case_file), method);
   if (!spec.tiers.count(tier)) throw sc::InputError(case_file, "/tiers", "the case has no " + tier + " tier (try --tier full)");
   const double dx = spacing > 0.0 ? spacing : spec.tiers.at(tier).spacings.back();
   sc::check_particle_count(spec, dx, max_particles, spacing > 0.0 ? "(--spacing)" : "/tiers/" + tier + "/spacings");
@@ -85,6 +86,8 @@ int main(int argc, char** argv) {
   run->add_option("--resume", resume_from, "continue from this checkpoint (same case and spacing)")
       ->check(CLI::ExistingFile);
   run->add_option("--max-particles", max_particles, max_help)->check(CLI::PositiveNumber);
+  std::string run_method;
+  run->add_option("--method", run_method, "simulation method, overriding the case's \"method\" (one the case supports)");
 
   sc::ValidateOptions vopt;
   CLI::App* val = app.add_subcommand("validate", "Run the validation cases and write report.json, plots, summary.md");
@@ -135,7 +138,8 @@ int main(int argc, char** argv) {
   try {
     sc::set_data_root(root);
     if (bopt.out_dir.empty()) bopt.out_dir = sc::data_path("reports/baseline-run");
-    if (*run) return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from, max_particles);
+    if (*run)
+      return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from, run_method, max_particles);
     if (*bl) return bless_command(bopt, bless_from);
     if (*cmp) return sc::compare_runs(compare_a, compare_b, compare_out, compare_plots);
     if (*bench) return sc::bench(benchopt);

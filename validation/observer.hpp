@@ -4,6 +4,11 @@
 // A case file names its observer in "validation": {"observer": NAME, ...}; the observer reads the
 // rest of that object itself (with JsonObject, so unknown keys are errors). To add one, write
 // observers/<name>.cpp and list it in observers/registry.cpp.
+//
+// Observers see a run only through Method<D> (solver/method/method.hpp) and measure through its
+// ParticleView, so every method is measured the same way; the few measurements that need what only
+// SPH has go through the SPH probe (solver/simulator/sph_probe.hpp), which the observer checks for
+// when it is built.
 #pragma once
 #include <map>
 #include <memory>
@@ -12,7 +17,7 @@
 #include <vector>
 
 #include "io/case_file.hpp"
-#include "simulator/simulator.hpp"
+#include "method/method.hpp"
 
 namespace sc {
 
@@ -64,9 +69,9 @@ class Observer {
  public:
   virtual ~Observer() = default;
   /// Called once before the first step and after every step.
-  virtual void sample(const Simulator<D>& sim) = 0;
+  virtual void sample(const Method<D>& run) = 0;
   /// Called at the end of the run; computes metrics against the reference.
-  virtual ObserverResult finish(const Simulator<D>& sim) = 0;
+  virtual ObserverResult finish(const Method<D>& run) = 0;
 };
 
 /// Context an observer is built with: the case, the spacing of this run, repository root.

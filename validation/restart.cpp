@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "scene/scene_builder.hpp"
+#include "method/registry.hpp"
 
 namespace sc {
 
@@ -30,51 +30,20 @@ FrameLog read_frame_log(const json& run, const std::string& file) {
   return log;
 }
 
-/// Rejects a checkpoint written by another case or at another spacing.
-void check_same_run(const Checkpoint& c, const CaseSpec& spec, double dx) {
-  if (c.state.parameters_hash != spec.parameters_hash)
-    throw InputError(c.file, "/parameters_hash",
-                     "checkpoint was written for other case parameters (hash " + c.state.parameters_hash +
-                         ", case " + spec.file + " has " + spec.parameters_hash + ")");
-  if (c.state.spacing != dx)
-    throw InputError(c.file, "/spacing", "checkpoint spacing " + json(c.state.spacing).dump() +
-                                             " m differs from the run's " + json(dx).dump() + " m");
-}
-
 }  // namespace
 
 template <int D>
-Simulator<D> start_simulator(const CaseSpec& spec, double dx, const std::string& resume_from, FrameLog& log) {
-  const SimulationParams params = SimulationParams::from_case(spec, dx);
-  if (resume_from.empty()) {
-    try {
-      return Simulator<D>(build_scene<D>(spec, dx), params);
-    } catch (const BlowUpError& e) {
-      throw InputError(spec.file, "/domain", "every initial particle (blocks and tank wall layers) must lie inside "
-                                             "the domain; particle " + std::to_string(e.particle()) + " does not");
-    }
-  }
-  const Checkpoint c = read_checkpoint(resume_from);
-  check_same_run(c, spec, dx);
-  log = read_frame_log(c.state.run, c.file);
-  Simulator<D> sim(restore_particles<D>(c), params);
-  sim.set_clock(c.state.time, c.state.step);
-  sim.set_last_dt(c.state.last_dt);
-  return sim;
+std::unique_ptr<Method<D>> start_method(const CaseSpec& spec, double dx, const std::string& resume_from, FrameLog& log) {
+  if (resume_from.empty()) return make_method<D>(spec, dx);
+  json run;
+  std::unique_ptr<Method<D>> method = resume_method<D>(spec, dx, resume_from, run);
+  log = read_frame_log(run, resume_from);
+  return method;
 }
 
 template <int D>
-void write_run_checkpoint(const std::string& path, const Simulator<D>& sim, const CaseSpec& spec, double dx,
-                          const FrameLog& log) {
-  CheckpointState s;
-  s.dimension = D;
-  s.spacing = dx;
-  s.parameters_hash = spec.parameters_hash;
-  s.time = sim.time();
-  s.step = sim.steps();
-  s.last_dt = sim.last_dt();
-  s.run = frame_log_json(log);
-  write_checkpoint(path, sim.particles(), s);
+void write_run_checkpoint(const std::string& path, const Method<D>& method, const FrameLog& log) {
+  method.write_checkpoint(path, frame_log_json(log));
 }
 
 std::string checkpoint_name(long step) {
@@ -83,9 +52,9 @@ std::string checkpoint_name(long step) {
   return name;
 }
 
-template Simulator<2> start_simulator<2>(const CaseSpec&, double, const std::string&, FrameLog&);
-template Simulator<3> start_simulator<3>(const CaseSpec&, double, const std::string&, FrameLog&);
-template void write_run_checkpoint<2>(const std::string&, const Simulator<2>&, const CaseSpec&, double, const FrameLog&);
-template void write_run_checkpoint<3>(const std::string&, const Simulator<3>&, const CaseSpec&, double, const FrameLog&);
+template std::unique_ptr<Method<2>> start_method<2>(const CaseSpec&, double, const std::string&, FrameLog&);
+template std::unique_ptr<Method<3>> start_method<3>(const CaseSpec&, double, const std::string&, FrameLog&);
+template void write_run_checkpoint<2>(const std::string&, const Method<2>&, const FrameLog&);
+template void write_run_checkpoint<3>(const std::string&, const Method<3>&, const FrameLog&);
 
 }  // namespace sc

@@ -2,12 +2,13 @@
 // run starts (the case's scene, or a checkpoint), and the checkpoint of a run's current state with
 // the frames it has written, so a resumed run continues the same frame series.
 #pragma once
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "io/checkpoint.hpp"
-#include "simulator/simulator.hpp"
+#include "io/case_file.hpp"
+#include "method/method.hpp"
 
 namespace sc {
 
@@ -17,16 +18,16 @@ struct FrameLog {
   double next_frame = 0.0;
 };
 
-/// The simulator a run starts with: the case's scene at t = 0 or, when `resume_from` names a
-/// checkpoint, its state and frame log. The checkpoint must come from the same case (parameters
-/// hash), dimension and spacing; otherwise, or if it is unreadable, throws InputError.
+/// The method a run starts with, built by the registry (method/registry.hpp): the case's scene at
+/// t = 0 or, when `resume_from` names a checkpoint, its state and frame log. The checkpoint must
+/// come from the same case (parameters hash), dimension and spacing; otherwise, or if it is
+/// unreadable, throws InputError.
 template <int D>
-Simulator<D> start_simulator(const CaseSpec& spec, double dx, const std::string& resume_from, FrameLog& log);
+std::unique_ptr<Method<D>> start_method(const CaseSpec& spec, double dx, const std::string& resume_from, FrameLog& log);
 
-/// Writes the checkpoint of `sim` and its frame log to `path` (atomically).
+/// Writes the checkpoint of `method` and its frame log to `path` (atomically).
 template <int D>
-void write_run_checkpoint(const std::string& path, const Simulator<D>& sim, const CaseSpec& spec, double dx,
-                          const FrameLog& log);
+void write_run_checkpoint(const std::string& path, const Method<D>& method, const FrameLog& log);
 
 /// File name of the checkpoint written after `step`: checkpoint_<step, 8 digits>.ckpt.
 std::string checkpoint_name(long step);

@@ -12,10 +12,11 @@
 #include "dry_twin_report.hpp"
 #include "io/atomic_file.hpp"
 #include "io/vtu_writer.hpp"
+#include "method/registry.hpp"
 #include "progress.hpp"
 #include "report.hpp"
 #include "restart.hpp"
-#include "scene/scene_builder.hpp"
+#include "simulator/sph_probe.hpp"
 
 namespace fs = std::filesystem;
 
@@ -28,69 +29,72 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   const ObserverContext ctx{spec, dx, data_root()};
   std::unique_ptr<Observer<D>> observer = make_observer<D>(ctx);  // checks the validation block first
   FrameLog log;
-  Simulator<D> sim = start_simulator<D>(spec, dx, settings.resume_from, log);
+  const std::unique_ptr<Method<D>> method = start_method<D>(spec, dx, settings.resume_from, log);
+  Method<D>& run = *method;
   RunResult result;
   result.spacing = dx;
-  result.particles = sim.particles().size();
+  result.particles = run.particles().size();
   const double end = settings.end_time > 0.0 ? settings.end_time : spec.end_time;
   fs::create_directories(settings.out_dir);
 
   auto& frames = log.frames;
   double& next_frame = log.next_frame;
   auto write_frame = [&]() {
-    auto t = sim.timers().time(Stage::Output);
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05zu.vtu", frames.size());
-    write_file_atomic(settings.out_dir + "/" + name, vtu_document(sim.particles()));
-    frames.emplace_back(sim.time(), name);
+    write_file_atomic(settings.out_dir + "/" + name, run.vtu_frame());
+    frames.emplace_back(run.time(), name);
     write_file_atomic(settings.out_dir + "/frames.pvd", pvd_document(frames));
   };
 
   const auto start = std::chrono::steady_clock::now();
   Progress progress(settings.label, end);
-  observer->sample(sim);
+  observer->sample(run);
   auto count_moving = [&]() {
-    const auto& ps = sim.particles();
+    const ParticleView<D> view = run.particles();
     long n = 0;
-    for (std::size_t i = 0; i < ps.size(); ++i) n += ps.moves(i) ? 1 : 0;
-    result.moving_particles.x.push_back(sim.time());
+    for (std::size_t i = 0; i < view.size(); ++i) n += view.moves(i) ? 1 : 0;
+    result.moving_particles.x.push_back(run.time());
     result.moving_particles.y.push_back(static_cast<double>(n));
   };
   count_moving();
   try {
     if (settings.write_frames && frames.empty()) write_frame();
-    while (sim.time() < end - 1e-12) {
-      sim.step();
-      observer->sample(sim);
+    while (run.time() < end - 1e-12) {
+      run.step();
+      observer->sample(run);
       count_moving();
-      if (settings.write_frames && spec.frame_interval > 0.0 && sim.time() >= next_frame + spec.frame_interval - 1e-12) {
+      if (settings.write_frames && spec.frame_interval > 0.0 && run.time() >= next_frame + spec.frame_interval - 1e-12) {
         next_frame += spec.frame_interval;
         write_frame();
       }
-      if (settings.checkpoint_every > 0 && sim.steps() % settings.checkpoint_every == 0)
-        write_run_checkpoint(settings.out_dir + "/" + checkpoint_name(sim.steps()), sim, spec, dx, log);
-      progress.update(sim.time(), sim.steps());
+      if (settings.checkpoint_every > 0 && run.steps() % settings.checkpoint_every == 0)
+        write_run_checkpoint(settings.out_dir + "/" + checkpoint_name(run.steps()), run, log);
+      progress.update(run.time(), run.steps());
     }
-    if (settings.write_frames && (frames.empty() || frames.back().first < sim.time())) write_frame();
-    progress.done(sim.time(), sim.steps());
+    if (settings.write_frames && (frames.empty() || frames.back().first < run.time())) write_frame();
+    progress.done(run.time(), run.steps());
   } catch (const BlowUpError& e) {
-    progress.done(sim.time(), sim.steps());
-    write_file_atomic(settings.out_dir + "/last_good.vtu", vtu_document(sim.particles()));
-    write_run_checkpoint(settings.out_dir + "/last_good.ckpt", sim, spec, dx, log);
+    progress.done(run.time(), run.steps());
+    write_file_atomic(settings.out_dir + "/last_good.vtu", run.last_good_frame());
+    std::string saved = settings.out_dir + "/last_good.vtu";
+    if (run.writes_checkpoints()) {
+      write_run_checkpoint(settings.out_dir + "/last_good.ckpt", run, log);
+      saved += " and " + settings.out_dir + "/last_good.ckpt";
+    }
     result.status = "error";
     result.exit_code = kBlowUp;
-    result.message = std::string(e.what()) + "; last good state in " + settings.out_dir + "/last_good.vtu and " +
-                     settings.out_dir + "/last_good.ckpt";
+    result.message = std::string(e.what()) + "; last good state in " + saved;
   }
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.steps = sim.steps();
-  result.checksum = sim.particles().checksum();
+  result.steps = run.steps();
+  result.checksum = run.checksum();
   const auto& counts = result.moving_particles.y;
   for (double c : counts) result.moving_particles_mean += c / static_cast<double>(counts.size());
-  if (spec.adaptive) result.adapt = sim.adapt_account();
+  if (spec.adaptive) result.adapt = require_sph(run, "the adaptivity report").adapt_account();
   if (result.status != "error") {
-    write_file_atomic(settings.out_dir + "/final.vtu", vtu_document(sim.particles()));
-    result.observed = observer->finish(sim);
+    write_file_atomic(settings.out_dir + "/final.vtu", run.vtu_frame());
+    result.observed = observer->finish(run);
     for (const auto& [name, metric] : result.observed.metrics)
       if (!metric.pass()) result.status = "fail";
     result.exit_code = result.status == "pass" ? kSuccess : kCaseFailed;
@@ -98,9 +102,20 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   return result;
 }
 
+/// Checks what the run asks of its method before anything is allocated: a known method, SPH for
+/// split and merge, checkpoints when the run writes or resumes one.
+void check_run(const CaseSpec& spec, const RunSettings& settings) {
+  check_method(spec);
+  if (spec.adaptive) require_sph(spec, "the \"adaptive\" section (split and merge)");
+  if ((settings.checkpoint_every > 0 || !settings.resume_from.empty()) && !method_writes_checkpoints(spec.method))
+    throw InputError(spec.file, "/method", "--checkpoint-every and --resume are not supported by method \"" +
+                                               spec.method + "\" (it writes no checkpoints)");
+}
+
 }  // namespace
 
 RunResult run_simulation(const CaseSpec& spec, double dx, const RunSettings& settings) {
+  check_run(spec, settings);
   RunResult r = spec.dimension == 2 ? run_in_dimension<2>(spec, dx, settings) : run_in_dimension<3>(spec, dx, settings);
   if (spec.adaptive && r.status != "error") add_adaptive_results(spec, dx, settings, r);
   if (r.status != "error") add_dry_twin_results(spec, dx, settings, r);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "io/json_reader.hpp"
 
 namespace sc {
 
@@ -28,14 +29,31 @@ struct ParticleView {
   std::span<const std::uint8_t> phase;    ///< Phase as an integer
   std::span<const std::int64_t> id;       ///< stable identity (optional)
   std::span<const double> pressure;       ///< [Pa] (optional)
-  std::span<const double> held_water;     ///< water a sand particle holds besides m [kg] (optional)
-  std::span<const double> saturation;     ///< water fraction of a sand particle's pores, in [0, 1] (optional)
+  std::span<const double> density;        ///< [kg/m^3] (optional)
+  std::span<const double> support;        ///< radius within which the particle interacts [m] (optional)
+  std::span<const double> porosity;       ///< pore fraction of a porous particle, 0 elsewhere (optional)
+  std::span<const double> held_water;     ///< water in a porous particle's pores, besides m [kg] (optional)
+  std::span<const double> leaving_water;  ///< water that has left the pores and is about to become free water [kg] (optional)
+  std::span<const double> saturation;     ///< water fraction of a porous particle's pores, in [0, 1] (optional)
+  std::span<const double> pore_water_pressure;  ///< pressure of the water in the pores [Pa] (optional)
 
   std::size_t size() const { return x.size(); }
   Phase phase_of(std::size_t i) const { return static_cast<Phase>(phase[i]); }
   bool moves(std::size_t i) const { return phase_of(i) != Phase::Boundary; }
-  double water_held_by(std::size_t i) const { return held_water.empty() ? 0.0 : held_water[i]; }
+  /// Water particle i holds besides its mass: in its pores and on its way out of them [kg].
+  double water_held_by(std::size_t i) const {
+    if (held_water.empty()) return 0.0;
+    return leaving_water.empty() ? held_water[i] : held_water[i] + leaving_water[i];
+  }
 };
+
+/// All water of a run [kg]: the mass of the water particles plus the water every other particle holds.
+template <int D>
+double total_water(const ParticleView<D>& view) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < view.size(); ++i) sum += view.phase_of(i) == Phase::Water ? view.m[i] : view.water_held_by(i);
+  return sum;
+}
 
 /// Wall-clock seconds a method spent in one of its named stages since the run started.
 struct StageTime {
@@ -65,6 +83,12 @@ class Method {
   virtual std::string vtu_frame() const = 0;
   /// The state at the start of the last step, as a VTU document (written after a blow-up).
   virtual std::string last_good_frame() const = 0;
+  /// Whether the method can write a checkpoint that resumes bitwise (`run --checkpoint-every`,
+  /// `--resume`); the registry tells the same for a method name before one is built.
+  virtual bool writes_checkpoints() const = 0;
+  /// Writes the current state to `path` (atomically) with `run`, the runner's bookkeeping (the
+  /// frames it has written), which a resumed run gets back. Only when writes_checkpoints().
+  virtual void write_checkpoint(const std::string& path, const json& run) const = 0;
 };
 
 }  // namespace sc

@@ -72,6 +72,7 @@ class Simulator {
   double last_dt() const { return last_dt_; }
   void set_last_dt(double dt) { last_dt_ = dt; }
   StageTimers& timers() { return timers_; }
+  const StageTimers& timers() const { return timers_; }
   /// What adaptivity did so far in this run (zero when the case has no "adaptive" section).
   const AdaptAccount& adapt_account() const { return adapt_account_; }
 

@@ -31,15 +31,15 @@ class AngleOfReposeObserver : public Observer<D> {
     phi_ = ctx.spec.sand.friction_angle_deg;
   }
 
-  void sample(const Simulator<D>& sim) override {
-    const double e = sand_kinetic_energy(sim.particles());
+  void sample(const Method<D>& run) override {
+    const double e = sand_kinetic_energy(run.particles());
     peak_energy_ = std::max(peak_energy_, e);
     last_energy_ = e;
   }
 
-  ObserverResult finish(const Simulator<D>& sim) override {
+  ObserverResult finish(const Method<D>& run) override {
     ObserverResult r;
-    const std::vector<double> top = surface_heights(sim.particles(), x0_, dx_, columns_, floor_);
+    const std::vector<double> top = surface_heights(run.particles(), x0_, dx_, columns_, floor_);
     const std::size_t peak = static_cast<std::size_t>(std::max_element(top.begin(), top.end()) - top.begin());
     const double H = top[peak];
     std::vector<double> xl, yl, xr, yr, xs;

@@ -43,26 +43,27 @@ class CapillaryRiseObserver : public Observer<D> {
     kc_ = p.capillary_constant;
     alpha_ = p.capillary_exponent;
     phi_ = p.porosity;
+    balance_ = WaterBalanceProbe<D>(p.fluid_density, dx_);
     rows_ = static_cast<std::size_t>(std::lround((top_ - bottom_) / dx_));
     s_sum_.assign(rows_, 0.0);
   }
 
-  void sample(const Simulator<D>& sim) override {
-    balance_.sample(sim);
-    const auto& ps = sim.particles();
+  void sample(const Method<D>& run) override {
+    balance_.sample(run);
+    const ParticleView<D> ps = run.particles();
     const std::vector<double> s = row_means(ps, ps.saturation, band_lo_, band_hi_, bottom_, dx_, rows_);
     table_ = pool_surface(ps);
     double wet_top = bottom_;
     for (std::size_t k = 0; k < rows_; ++k)
       if (s[k] >= 0.5) wet_top = bottom_ + (k + 1) * dx_;
-    time_.push_back(sim.time());
+    time_.push_back(run.time());
     rise_.push_back(wet_top - table_);
-    if (sim.time() < start_average_) return;
+    if (run.time() < start_average_) return;
     for (std::size_t k = 0; k < rows_; ++k) s_sum_[k] += s[k];
     ++samples_;
   }
 
-  ObserverResult finish(const Simulator<D>&) override {
+  ObserverResult finish(const Method<D>&) override {
     ObserverResult r;
     const double zmax = analytic::fringe_height(kc_, rho_, g_);
     Series sim_s{"saturation_sim", "saturation S", "height above the table [m]", {}, {}};
@@ -102,7 +103,7 @@ class CapillaryRiseObserver : public Observer<D> {
 
  private:
   /// Top of the pool's water outside the column, plus half a spacing.
-  double pool_surface(const ParticleSet<D>& ps) const {
+  double pool_surface(const ParticleView<D>& ps) const {
     double top = -INFINITY;
     for (std::size_t i = 0; i < ps.size(); ++i)
       if (ps.phase_of(i) == Phase::Water && (ps.x[i][0] < column_lo_ - dx_ || ps.x[i][0] > column_hi_ + dx_))

@@ -32,22 +32,24 @@ class ColumnCollapseObserver : public Observer<D> {
     L0_ = ctx.spec.blocks.front().max[0] - wall_;
     H0_ = ctx.spec.blocks.front().max[D - 1] - floor_;
     columns_ = static_cast<std::size_t>(std::ceil((ctx.spec.tank->max[0] - wall_) / dx_));
+    if (ctx.spec.porous) fluid_density_ = ctx.spec.porous->fluid_density;
   }
 
-  void sample(const Simulator<D>& sim) override {
-    const double e = sand_kinetic_energy(sim.particles());
+  void sample(const Method<D>& run) override {
+    const ParticleView<D> ps = run.particles();
+    const double e = sand_kinetic_energy(ps);
     peak_energy_ = std::max(peak_energy_, e);
-    time_.push_back(sim.time());
+    time_.push_back(run.time());
     energy_.push_back(e);
-    if (sim.params().porous && (water_.has_value() || total_water(sim.particles()) > 0.0)) {
-      if (!water_) water_.emplace();
-      water_->sample(sim);
-      water_total_.push_back(total_water(sim.particles()));
+    if (fluid_density_ && (water_.has_value() || total_water(ps) > 0.0)) {
+      if (!water_) water_.emplace(*fluid_density_, dx_);
+      water_->sample(run);
+      water_total_.push_back(total_water(ps));
     }
   }
 
-  ObserverResult finish(const Simulator<D>& sim) override {
-    const auto& ps = sim.particles();
+  ObserverResult finish(const Method<D>& run) override {
+    const ParticleView<D> ps = run.particles();
     ObserverResult r;
     const double runout = quantile(sand_x(ps), 0.99) + 0.5 * dx_ - wall_;
     const std::vector<double> top = surface_heights(ps, wall_, dx_, columns_, floor_);
@@ -102,6 +104,7 @@ class ColumnCollapseObserver : public Observer<D> {
   double peak_energy_ = 0.0;
   std::vector<double> time_, energy_;
   std::map<std::string, MetricLimit> limits_;
+  std::optional<double> fluid_density_;        ///< ρ^f of absorbed water (cases with a "porous" section)
   std::optional<WaterBalanceProbe<D>> water_;  ///< runs with porous sand and water only
   std::vector<double> water_total_;            ///< free + absorbed water at every sample
 };

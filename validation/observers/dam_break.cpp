@@ -9,13 +9,14 @@
 //          tau = t sqrt(g/a).
 // Metrics: front_rms and front_max (relative errors of Z at the table's T, no time shift) and
 // residual_height_rms (relative, tau <= 3).
+// The neighbour-count filter uses SPH's neighbour lists (the SPH probe): the observer needs SPH.
 #include <algorithm>
 #include <cmath>
 
 #include "observer.hpp"
 #include "reference_data.hpp"
 #include "scene/scene_builder.hpp"
-#include "sph/kernels.hpp"
+#include "simulator/sph_probe.hpp"
 
 namespace sc {
 
@@ -31,7 +32,7 @@ long bulk_neighbour_count(double dx, double h) {
 }
 
 template <int D>
-long water_neighbours(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i) {
+long water_neighbours(const ParticleView<D>& ps, const NeighbourGrid<D>& nb, std::size_t i) {
   long n = 0;
   for (const auto j : nb.of(i)) n += ps.phase_of(j) == Phase::Water ? 1 : 0;
   return n;
@@ -43,6 +44,7 @@ class DamBreakObserver : public Observer<D> {
   explicit DamBreakObserver(const ObserverContext& ctx) : dx_(ctx.spacing) {
     JsonObject o = validation_block(ctx);
     if (!ctx.spec.tank || ctx.spec.blocks.empty()) o.fail("observer", "the dam_break observer needs a tank and a water block");
+    require_sph(ctx.spec, "the dam_break observer (its front filter counts neighbours in SPH's lists)");
     const std::string front_csv = o.string("front_reference");
     const std::string height_csv = o.string("height_reference");
     height_tau_max_ = o.positive("height_tau_max", 3.0);
@@ -60,9 +62,9 @@ class DamBreakObserver : public Observer<D> {
     min_neighbours_ = bulk_neighbour_count<D>(dx_, ctx.spec.support_ratio * dx_) / 3;
   }
 
-  void sample(const Simulator<D>& sim) override {
-    const auto& ps = sim.particles();
-    const auto& nb = sim.neighbours();
+  void sample(const Method<D>& run) override {
+    const ParticleView<D> ps = run.particles();
+    const NeighbourGrid<D>& nb = require_sph(run, "dam_break").neighbours();
     const bool have_lists = nb.size() == ps.size();
     double front = 0.0, height = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
@@ -72,12 +74,12 @@ class DamBreakObserver : public Observer<D> {
       if (x[D - 1] - y0_ <= 2.0 * dx_ && dense) front = std::max(front, x[0] - x0_ + 0.5 * dx_);
       if (x[0] - x0_ <= 2.0 * dx_ && dense) height = std::max(height, x[D - 1] - y0_ + 0.5 * dx_);
     }
-    T_.push_back(sim.time() * time_scale_);
+    T_.push_back(run.time() * time_scale_);
     Z_.push_back(front / a_);
     H_.push_back(height / a_);
   }
 
-  ObserverResult finish(const Simulator<D>&) override {
+  ObserverResult finish(const Method<D>&) override {
     ObserverResult r;
     const double T_end = T_.empty() ? 0.0 : T_.back();
     double sum2 = 0.0, worst = 0.0;

@@ -11,8 +11,10 @@
 // linear profile from ρ g h_p at the top to 0 at the bottom (relative RMS over ρ g (L + h_p)).
 // Metrics: flux_rel_error, pressure_profile_error, water_balance_rel_error, saturation_violation;
 // informational: flux [m/s], ponding_depth [m] (window mean).
+// The pond depth counts water in full SPH water particles (the SPH probe): the observer needs SPH.
 #include "observer.hpp"
 #include "porous_probe.hpp"
+#include "simulator/sph_probe.hpp"
 
 namespace sc {
 
@@ -24,6 +26,7 @@ class DarcyColumnObserver : public Observer<D> {
   explicit DarcyColumnObserver(const ObserverContext& ctx) : dx_(ctx.spacing) {
     JsonObject o = validation_block(ctx);
     if (!ctx.spec.porous || !ctx.spec.tank) o.fail("observer", "darcy_column needs a \"porous\" section and a tank");
+    require_sph(ctx.spec, "the darcy_column observer (its pond depth counts full SPH water particles)");
     bottom_ = o.number("column_bottom");
     top_ = o.number("column_top");
     fit_start_ = o.non_negative("fit_start", 0.0);
@@ -37,24 +40,25 @@ class DarcyColumnObserver : public Observer<D> {
     for (int d = 1; d < D - 1; ++d) width_ *= ctx.spec.tank->max[d] - ctx.spec.tank->min[d];
     band_lo_ = ctx.spec.tank->min[0] + 0.25 * (ctx.spec.tank->max[0] - ctx.spec.tank->min[0]);
     band_hi_ = ctx.spec.tank->max[0] - 0.25 * (ctx.spec.tank->max[0] - ctx.spec.tank->min[0]);
+    balance_ = WaterBalanceProbe<D>(p.fluid_density, dx_);
   }
 
-  void sample(const Simulator<D>& sim) override {
-    balance_.sample(sim);
-    const auto& ps = sim.particles();
-    const PorousParams& p = *sim.params().porous;
+  void sample(const Method<D>& run) override {
+    balance_.sample(run);
+    const ParticleView<D> ps = run.particles();
+    const double water_mass = require_sph(run, "darcy_column").full_water_mass();
     double out = 0.0, pond = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] < bottom_) out += ps.m[i];
-      if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] > top_) pond += ps.m[i] / p.water_mass;
-      if (ps.porosity[i] > 0.0) out += ps.emit_store[i];
+      if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] > top_) pond += ps.m[i] / water_mass;
+      if (ps.porosity[i] > 0.0) out += ps.leaving_water[i];
     }
-    time_.push_back(sim.time());
+    time_.push_back(run.time());
     outflow_.push_back(out / (rho_ * width_));
     pond_.push_back(pond * std::pow(dx_, D) / width_);
   }
 
-  ObserverResult finish(const Simulator<D>& sim) override {
+  ObserverResult finish(const Method<D>& run) override {
     ObserverResult r;
     std::vector<double> t, y;
     double pond_sum = 0.0;
@@ -67,7 +71,7 @@ class DarcyColumnObserver : public Observer<D> {
     add(r, "flux", q);
     add(r, "ponding_depth", hp);
     add(r, "flux_rel_error", std::abs(q - q_ref) / q_ref);
-    add(r, "pressure_profile_error", pressure_profile(sim, pond_.empty() ? 0.0 : pond_.back(), r));
+    add(r, "pressure_profile_error", pressure_profile(run.particles(), pond_.empty() ? 0.0 : pond_.back(), r));
     add(r, "water_balance_rel_error", balance_.relative_error());
     add(r, "saturation_violation", balance_.saturation_violation());
     std::vector<double> ref(time_.size(), outflow_.empty() ? 0.0 : outflow_.front());
@@ -83,12 +87,9 @@ class DarcyColumnObserver : public Observer<D> {
   }
 
  private:
-  double pressure_profile(const Simulator<D>& sim, double hp, ObserverResult& r) const {
-    const auto& ps = sim.particles();
-    std::vector<double> pw(ps.size());
-    for (std::size_t i = 0; i < ps.size(); ++i) pw[i] = ps.pore_pressure[i] - ps.capillary[i];
+  double pressure_profile(const ParticleView<D>& ps, double hp, ObserverResult& r) const {
     const auto rows = static_cast<std::size_t>(std::lround((top_ - bottom_) / dx_));
-    const std::vector<double> mean = row_means(ps, pw, band_lo_, band_hi_, bottom_, dx_, rows);
+    const std::vector<double> mean = row_means(ps, ps.pore_water_pressure, band_lo_, band_hi_, bottom_, dx_, rows);
     Series sim_s{"pressure_sim", "pressure [Pa]", "height [m]", {}, {}}, ref_s{"pressure_exact", "pressure [Pa]", "height [m]", {}, {}};
     double err2 = 0.0;
     const double scale = rho_ * g_ * (top_ - bottom_ + hp);

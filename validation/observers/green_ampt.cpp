@@ -14,8 +14,10 @@
 // front_depth_rel_error (same window, informational), water_balance_rel_error,
 // saturation_violation; informational psi [m], K [m/s], t_gate_start [s]. Samples after the pond
 // has run dry (h < one spacing) are left out of the gate (Green-Ampt needs ponding).
+// The pond depth counts water in full SPH water particles (the SPH probe): the observer needs SPH.
 #include "observer.hpp"
 #include "porous_probe.hpp"
+#include "simulator/sph_probe.hpp"
 #include "reference/analytic/green_ampt.hpp"
 
 namespace sc {
@@ -28,6 +30,7 @@ class GreenAmptObserver : public Observer<D> {
   explicit GreenAmptObserver(const ObserverContext& ctx) : dx_(ctx.spacing) {
     JsonObject o = validation_block(ctx);
     if (!ctx.spec.porous || !ctx.spec.tank) o.fail("observer", "green_ampt needs a \"porous\" section and a tank");
+    require_sph(ctx.spec, "the green_ampt observer (its pond depth counts full SPH water particles)");
     surface_ = o.number("bed_surface");
     bottom_ = o.number("bed_bottom");
     sample_interval_ = o.positive("sample_interval", 0.05);
@@ -35,6 +38,7 @@ class GreenAmptObserver : public Observer<D> {
     o.finish();
     const PorousParams& p = *ctx.spec.porous;
     rho_ = p.fluid_density;
+    balance_ = WaterBalanceProbe<D>(p.fluid_density, dx_);
     const double g = std::abs(ctx.spec.gravity[D - 1]);
     K_ = p.permeability * rho_ * g / p.fluid_viscosity;
     dtheta_ = p.porosity * (1.0 - p.initial_saturation);
@@ -46,17 +50,18 @@ class GreenAmptObserver : public Observer<D> {
     band_hi_ = x1 - 0.25 * (x1 - x0);
   }
 
-  void sample(const Simulator<D>& sim) override {
-    balance_.sample(sim);
-    if (sim.time() < next_sample_ - 1e-12) return;
+  void sample(const Method<D>& run) override {
+    balance_.sample(run);
+    if (run.time() < next_sample_ - 1e-12) return;
     next_sample_ += sample_interval_;
-    const auto& ps = sim.particles();
+    const ParticleView<D> ps = run.particles();
+    const double water_mass = require_sph(run, "green_ampt").full_water_mass();
     double water = 0.0, pond = 0.0;
     std::vector<double> S(ps.size(), 0.0);
     for (std::size_t i = 0; i < ps.size(); ++i) {
-      if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] > surface_) pond += ps.m[i] / sim.params().porous->water_mass;
+      if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] > surface_) pond += ps.m[i] / water_mass;
       if (!in_porous_band(ps, i, band_lo_, band_hi_)) continue;
-      water += ps.absorbed[i] + ps.emit_store[i];
+      water += ps.water_held_by(i);
       S[i] = ps.saturation[i];
     }
     if (time_.empty()) initial_ = water;
@@ -65,13 +70,13 @@ class GreenAmptObserver : public Observer<D> {
     double front = 0.0;
     for (std::size_t k = 0; k < rows; ++k)
       if (s_rows[k] >= 0.5) front = std::max(front, surface_ - (bottom_ + k * dx_));
-    time_.push_back(sim.time());
+    time_.push_back(run.time());
     F_.push_back((water - initial_) / (rho_ * band_width()));
     front_.push_back(front);
     pond_.push_back(pond * std::pow(dx_, D) / tank_width_);
   }
 
-  ObserverResult finish(const Simulator<D>&) override {
+  ObserverResult finish(const Method<D>&) override {
     ObserverResult r;
     const double t_min = 5.0 * psi_ * dtheta_ / K_;
     double err = 0.0, front_err = 0.0;

@@ -46,7 +46,7 @@ class HydrostaticObserver : public Observer<D> {
 
   /// Free-surface height: where the colour field Σ_j V_j W_j drops to 1/2 (bisection along a
   /// vertical at x), averaged over five verticals across the central band.
-  double colour_surface(const ParticleSet<D>& ps, double top) const {
+  double colour_surface(const ParticleView<D>& ps, double top) const {
     double sum = 0.0;
     for (int k = 0; k < 5; ++k) {
       Vec<D> x = Vec<D>::Zero();
@@ -62,16 +62,17 @@ class HydrostaticObserver : public Observer<D> {
     return sum / 5.0 - floor_;
   }
 
-  double colour(const ParticleSet<D>& ps, const Vec<D>& x) const {
+  /// Needs the view's density and support (the particle volume m/ρ and the kernel's radius).
+  double colour(const ParticleView<D>& ps, const Vec<D>& x) const {
     double c = 0.0;
     for (std::size_t j = 0; j < ps.size(); ++j)
       if (ps.phase_of(j) == Phase::Water)
-        c += ps.volume(j) * kernel::density_kernel<D>(kernel_, (x - ps.x[j]).norm(), ps.h[j]);
+        c += ps.m[j] / ps.density[j] * kernel::density_kernel<D>(kernel_, (x - ps.x[j]).norm(), ps.support[j]);
     return c;
   }
 
-  void sample(const Simulator<D>& sim) override {
-    const auto& ps = sim.particles();
+  void sample(const Method<D>& run) override {
+    const ParticleView<D> ps = run.particles();
     double top = -INFINITY, vmax = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.phase_of(i) != Phase::Water) continue;
@@ -79,10 +80,10 @@ class HydrostaticObserver : public Observer<D> {
       if (in_band(ps.x[i])) top = std::max(top, ps.x[i][D - 1]);
     }
     const double H = top + 0.5 * dx_ - floor_;
-    time_.push_back(sim.time());
+    time_.push_back(run.time());
     height_.push_back(H);
     speed_.push_back(vmax);
-    if (sim.time() < start_average_) return;
+    if (run.time() < start_average_) return;
     if (H_window_start_ < 0.0) H_window_start_ = H;
     ++samples_;
     max_speed_window_ = std::max(max_speed_window_, vmax);
@@ -95,14 +96,14 @@ class HydrostaticObserver : public Observer<D> {
       if (ps.phase_of(i) != Phase::Water || !in_band(ps.x[i])) continue;
       const auto bin = static_cast<std::size_t>(std::max(0.0, (ps.x[i][D - 1] - floor_) / dx_));
       if (bin >= p_sum_.size()) { p_sum_.resize(bin + 1, 0.0); p_count_.resize(bin + 1, 0); }
-      p_sum_[bin] += ps.p[i];
+      p_sum_[bin] += ps.pressure[i];
       ++p_count_[bin];
     }
   }
 
-  ObserverResult finish(const Simulator<D>& sim) override {
+  ObserverResult finish(const Method<D>& run) override {
     ObserverResult r;
-    const double H = samples_ > 0 ? colour_surface(sim.particles(), floor_ + height_.back() - 0.5 * dx_) : NAN;
+    const double H = samples_ > 0 ? colour_surface(run.particles(), floor_ + height_.back() - 0.5 * dx_) : NAN;
     Series simulated{"pressure_sim", "pressure [Pa]", "height above floor [m]", {}, {}};
     Series exact{"pressure_exact", "pressure [Pa]", "height above floor [m]", {}, {}};
     double err2 = 0.0, ref2 = 0.0;

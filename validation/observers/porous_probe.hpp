@@ -5,27 +5,32 @@
 #include <cmath>
 #include <vector>
 
-#include "porous/porous_flow.hpp"
+#include "method/method.hpp"
 #include "observers/line_fit.hpp"
-#include "simulator/simulator.hpp"
+#include "porous/porous_flow.hpp"
 
 namespace sc {
 
 /// Free water plus absorbed water, against its value at the first sample; and the saturation
 /// m_p/(ρ^f φ V) of every porous particle *before* eq 21's clamp, so that a limiter failure shows.
+/// Needs the view's density, porosity and held water.
 template <int D>
 class WaterBalanceProbe {
  public:
-  void sample(const Simulator<D>& sim) {
-    const auto& ps = sim.particles();
-    const PorousParams& p = *sim.params().porous;
+  WaterBalanceProbe() = default;
+  /// ρ^f of the absorbed water (the case's porous section) and the run's particle spacing (the
+  /// volume of a fixed porous particle is spacing^D).
+  WaterBalanceProbe(double fluid_density, double spacing) : fluid_density_(fluid_density), spacing_(spacing) {}
+
+  void sample(const Method<D>& run) {
+    const ParticleView<D> ps = run.particles();
     const double total = total_water(ps);
     if (first_) { initial_ = total; first_ = false; }
     error_ = std::max(error_, std::abs(total - initial_) / initial_);
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (!is_porous_phase(ps.phase_of(i), ps.porosity[i])) continue;
-      const double V = ps.phase_of(i) == Phase::Boundary ? std::pow(p.spacing, D) : ps.volume(i);
-      const double S = ps.absorbed[i] / (p.fluid_density * ps.porosity[i] * V);
+      const double V = ps.phase_of(i) == Phase::Boundary ? std::pow(spacing_, D) : ps.m[i] / ps.density[i];
+      const double S = ps.held_water[i] / (fluid_density_ * ps.porosity[i] * V);
       s_min_ = std::min(s_min_, S);
       s_max_ = std::max(s_max_, S);
     }
@@ -35,19 +40,20 @@ class WaterBalanceProbe {
   double saturation_violation() const { return std::max({0.0, -s_min_ - 1e-12, s_max_ - 1.0 - 1e-12}); }
 
  private:
+  double fluid_density_ = 0.0, spacing_ = 0.0;
   bool first_ = true;
   double initial_ = 0.0, error_ = 0.0, s_min_ = 0.0, s_max_ = 1.0;
 };
 
 /// Porous (fixed-skeleton) particles whose x lies in [lo, hi]: the central band of a column.
 template <int D>
-bool in_porous_band(const ParticleSet<D>& ps, std::size_t i, double lo, double hi) {
+bool in_porous_band(const ParticleView<D>& ps, std::size_t i, double lo, double hi) {
   return ps.phase_of(i) == Phase::Boundary && ps.porosity[i] > 0.0 && ps.x[i][0] >= lo && ps.x[i][0] <= hi;
 }
 
 /// Mean of `field` over the porous particles of the band, in rows one spacing high from `z0`.
 template <int D>
-std::vector<double> row_means(const ParticleSet<D>& ps, const std::vector<double>& field, double lo, double hi,
+std::vector<double> row_means(const ParticleView<D>& ps, std::span<const double> field, double lo, double hi,
                               double z0, double dx, std::size_t rows) {
   std::vector<double> sum(rows, 0.0), count(rows, 0.0);
   for (std::size_t i = 0; i < ps.size(); ++i) {

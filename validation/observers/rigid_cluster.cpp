@@ -21,6 +21,7 @@
 #include "observer.hpp"
 #include "observers/sand_deposit.hpp"
 #include "sand/rigid_body.hpp"
+#include "simulator/sph_probe.hpp"
 
 namespace sc {
 
@@ -106,6 +107,7 @@ class RigidClusterObserver : public Observer<D> {
     JsonObject o = validation_block(ctx);
     if (ctx.spec.blocks.empty() || ctx.spec.blocks.front().fill != BlockFill::Sand)
       o.fail("observer", "the rigid_cluster observer needs a sand block first");
+    require_sph(ctx.spec, "the rigid_cluster observer (it counts SPH's rigid clusters)");
     periods_ = static_cast<int>(o.integer("periods", 1, 10000, 100));
     steps_ = static_cast<int>(o.integer("steps_per_period", 20, 100000, 400));
     limits_ = read_metric_limits(o);
@@ -113,24 +115,25 @@ class RigidClusterObserver : public Observer<D> {
     g_ = ctx.spec.gravity[D - 1];
   }
 
-  void sample(const Simulator<D>& sim) override {
-    const auto& ps = sim.particles();
+  void sample(const Method<D>& run) override {
+    const ParticleView<D> ps = run.particles();
+    const std::vector<std::int32_t>& cluster = require_sph(run, "rigid_cluster").particles().cluster;
     double M = 0.0, y = 0.0;
     int clusters = 0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.phase_of(i) != Phase::Sand) continue;
       M += ps.m[i];
       y += ps.m[i] * ps.x[i][D - 1];
-      clusters = std::max(clusters, static_cast<int>(ps.cluster[i]));
+      clusters = std::max(clusters, static_cast<int>(cluster[i]));
     }
     if (t_.empty()) y0_ = y / M;
     cluster_count_max_ = std::max(cluster_count_max_, clusters);
-    t_.push_back(sim.time());
+    t_.push_back(run.time());
     y_.push_back(y / M - y0_);
-    y_exact_.push_back(0.5 * g_ * sim.time() * sim.time());
+    y_exact_.push_back(0.5 * g_ * run.time() * run.time());
   }
 
-  ObserverResult finish(const Simulator<D>&) override {
+  ObserverResult finish(const Method<D>&) override {
     ObserverResult r;
     lattice_identity(r);
     forced_body(r);

@@ -5,14 +5,14 @@
 #include <cmath>
 #include <vector>
 
-#include "core/particle_set.hpp"
+#include "method/method.hpp"
 #include "observers/line_fit.hpp"
 
 namespace sc {
 
 /// Kinetic energy of the sand particles [J] (per unit depth in 2-D).
 template <int D>
-double sand_kinetic_energy(const ParticleSet<D>& ps) {
+double sand_kinetic_energy(const ParticleView<D>& ps) {
   double e = 0.0;
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (ps.phase_of(i) == Phase::Sand) e += 0.5 * ps.m[i] * ps.v[i].squaredNorm();
@@ -21,7 +21,7 @@ double sand_kinetic_energy(const ParticleSet<D>& ps) {
 
 /// x coordinates of the sand particles.
 template <int D>
-std::vector<double> sand_x(const ParticleSet<D>& ps) {
+std::vector<double> sand_x(const ParticleView<D>& ps) {
   std::vector<double> out;
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (ps.phase_of(i) == Phase::Sand) out.push_back(ps.x[i][0]);
@@ -39,7 +39,7 @@ inline double quantile(std::vector<double> values, double q) {
 /// Free surface of the sand: for columns [x0 + k dx, x0 + (k+1) dx) the height of the highest
 /// sand particle plus dx/2 above `floor` (0 where a column is empty). 2-D: x is axis 0, height axis D-1.
 template <int D>
-std::vector<double> surface_heights(const ParticleSet<D>& ps, double x0, double dx, std::size_t columns, double floor) {
+std::vector<double> surface_heights(const ParticleView<D>& ps, double x0, double dx, std::size_t columns, double floor) {
   std::vector<double> top(columns, 0.0);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.phase_of(i) != Phase::Sand) continue;

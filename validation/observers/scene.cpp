@@ -17,7 +17,6 @@
 #include <unordered_map>
 
 #include "observer.hpp"
-#include "porous/porous_flow.hpp"
 
 namespace sc {
 
@@ -32,21 +31,22 @@ class SceneObserver : public Observer<D> {
     o.finish();
   }
 
-  void sample(const Simulator<D>& sim) override {
-    follow_sand(sim.particles());
-    time_.push_back(sim.time());
-    free_water_.push_back(free_water(sim.particles()));
-    all_water_.push_back(total_water(sim.particles()));
+  void sample(const Method<D>& run) override {
+    const ParticleView<D> ps = run.particles();
+    follow_sand(ps);
+    time_.push_back(run.time());
+    free_water_.push_back(free_water(ps));
+    all_water_.push_back(total_water(ps));
   }
 
-  ObserverResult finish(const Simulator<D>& sim) override {
+  ObserverResult finish(const Method<D>& run) override {
     ObserverResult r;
-    add_metric(r, limits_, "escaped", static_cast<double>(escaped(sim.particles())));
+    add_metric(r, limits_, "escaped", static_cast<double>(escaped(run.particles())));
     double balance = 0.0;
     for (double w : all_water_) balance = std::max(balance, std::abs(w - all_water_.front()));
     add_metric(r, limits_, "water_balance_rel_error", all_water_.front() > 0.0 ? balance / all_water_.front() : 0.0);
     add_metric(r, limits_, "free_water_fraction", all_water_.back() > 0.0 ? free_water_.back() / all_water_.back() : 0.0);
-    add_collapse_metrics(r, sim);
+    add_collapse_metrics(r, run);
     r.series.push_back({"free_water_sim", "t [s]", "water mass [kg]", time_, free_water_});
     r.series.push_back({"all_water_sim", "t [s]", "water mass [kg]", time_, all_water_});
     r.plots.push_back({"water_mass.png", spec_.name + ": water balance", "t [s]", "mass [kg]",
@@ -63,17 +63,18 @@ class SceneObserver : public Observer<D> {
     bool wetted = false;
   };
 
-  void follow_sand(const ParticleSet<D>& ps) {
+  /// Needs the view's ids; saturation, where the method has it.
+  void follow_sand(const ParticleView<D>& ps) {
     const bool first = time_.empty();
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.phase_of(i) != Phase::Sand) continue;
       if (first) sand_[ps.id[i]] = SandTrack{ps.x[i]};
-      if (ps.saturation[i] >= kWetSaturation) sand_.at(ps.id[i]).wetted = true;
+      if (!ps.saturation.empty() && ps.saturation[i] >= kWetSaturation) sand_.at(ps.id[i]).wetted = true;
     }
   }
 
-  void add_collapse_metrics(ObserverResult& r, const Simulator<D>& sim) const {
-    const ParticleSet<D>& ps = sim.particles();
+  void add_collapse_metrics(ObserverResult& r, const Method<D>& run) const {
+    const ParticleView<D> ps = run.particles();
     double wet = 0.0, dry = 0.0, wet_moved = 0.0, dry_moved = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.phase_of(i) != Phase::Sand) continue;
@@ -82,14 +83,14 @@ class SceneObserver : public Observer<D> {
       (t.wetted ? wet : dry) += 1.0;
       (t.wetted ? wet_moved : dry_moved) += moved ? 1.0 : 0.0;
     }
-    const bool full_length = sim.time() >= spec_.end_time - 0.5 * spec_.dt_max;
+    const bool full_length = run.time() >= spec_.end_time - 0.5 * spec_.dt_max;
     const auto& limits = full_length ? limits_ : std::map<std::string, MetricLimit>{};
     add_metric(r, limits, "sand_displaced_fraction_wet", wet > 0.0 ? wet_moved / wet : 0.0);
     add_metric(r, limits, "sand_displaced_fraction_dry", dry > 0.0 ? dry_moved / dry : 0.0);
     add_metric(r, limits, "sand_wetted_fraction", wet + dry > 0.0 ? wet / (wet + dry) : 0.0);
   }
 
-  static double free_water(const ParticleSet<D>& ps) {
+  static double free_water(const ParticleView<D>& ps) {
     double m = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i)
       if (ps.phase_of(i) == Phase::Water) m += ps.m[i];
@@ -106,7 +107,7 @@ class SceneObserver : public Observer<D> {
     return false;
   }
 
-  long escaped(const ParticleSet<D>& ps) const {
+  long escaped(const ParticleView<D>& ps) const {
     long n = 0;
     for (std::size_t i = 0; i < ps.size(); ++i)
       if (ps.moves(i) && outside(ps.x[i])) ++n;

@@ -1,0 +1,193 @@
+// The method seam (solver/method/): a run built through the registry steps, shows its state
+// through the method-neutral ParticleView exactly as its checksum hashes it, is deterministic,
+// resumes bitwise from its own checkpoint; an unknown or unsupported method name is bad input
+// (exit 2) naming the case file and the JSON path, before anything is allocated.
+#include <boost/test/unit_test.hpp>
+#include <filesystem>
+#include <fstream>
+
+#include "io/case_file.hpp"
+#include "method/registry.hpp"
+#include "simulator/sph_probe.hpp"
+#include "support/process.hpp"
+
+namespace fs = std::filesystem;
+using namespace sc;
+
+namespace {
+
+const std::string small_case = std::string(SANDCASTLE_SOURCE_DIR) + "/tests/reliability/small_dam_break.json";
+constexpr double kSpacing = 0.02;  // coarser than the case's tiers: a few hundred particles
+
+/// The ParticleSet::checksum of positions and velocities copied out of a view: equal to the
+/// method's checksum exactly when the view shows the state the method hashes.
+std::string view_checksum(const ParticleView<2>& view) {
+  ParticleSet<2> copy;
+  for (std::size_t i = 0; i < view.size(); ++i) {
+    const std::size_t k = copy.append();
+    copy.x[k] = view.x[i];
+    copy.v[k] = view.v[i];
+  }
+  return copy.checksum();
+}
+
+/// Writes `doc` to a fresh temporary case file and returns its path.
+std::string write_case(const json& doc) {
+  const std::string path = test::fresh_path("method_case") + ".json";
+  std::ofstream(path) << doc.dump();
+  return path;
+}
+
+json small_case_json() {
+  std::ifstream in(small_case);
+  return json::parse(in);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(method_registry)
+
+BOOST_AUTO_TEST_CASE(a_run_built_through_the_registry_steps_and_its_view_matches_its_state) {
+  const CaseSpec spec = load_case(small_case);
+  BOOST_TEST(spec.method == "sph");
+  const std::unique_ptr<Method<2>> run = make_method<2>(spec, kSpacing);
+  BOOST_TEST(run->name() == "sph");
+  const std::string initial = run->checksum();
+  const double water0 = total_water(run->particles());
+  BOOST_TEST(water0 > 0.0);
+  double elapsed = 0.0;
+  for (int k = 0; k < 40; ++k) elapsed += run->step();
+  BOOST_TEST(run->steps() == 40);
+  BOOST_TEST(run->time() == elapsed);  // the clock is the sum of the steps taken, bitwise
+  const ParticleView<2> view = run->particles();
+  BOOST_TEST(view.size() > 100u);
+  for (std::size_t n : {view.v.size(), view.m.size(), view.phase.size(), view.id.size(), view.pressure.size(),
+                        view.density.size(), view.support.size()})
+    BOOST_TEST(n == view.size());
+  BOOST_TEST(view.held_water.empty());  // no "porous" section: the optional porous fields stay empty
+  BOOST_TEST(view_checksum(view) == run->checksum());
+  BOOST_TEST(run->checksum() != initial);  // the water moved
+  // A dam break without porous flow neither creates nor destroys water: the mass is exact.
+  BOOST_TEST(total_water(view) == water0, boost::test_tools::tolerance(1e-12));
+  std::size_t moving = 0;
+  for (std::size_t i = 0; i < view.size(); ++i) moving += view.moves(i) ? 1 : 0;
+  BOOST_TEST(moving > 0u);
+  BOOST_TEST(moving < view.size());  // the tank walls are particles too
+  std::vector<std::string> stages;
+  for (const StageTime& s : run->stage_times()) {
+    stages.push_back(s.name);
+    BOOST_TEST(s.seconds >= 0.0);
+  }
+  BOOST_TEST(std::count(stages.begin(), stages.end(), "neighbours") == 1);
+  BOOST_TEST(run->vtu_frame().ends_with("</VTKFile>\n"));
+}
+
+BOOST_AUTO_TEST_CASE(two_runs_built_through_the_registry_agree_bitwise) {
+  const CaseSpec spec = load_case(small_case);
+  const std::unique_ptr<Method<2>> a = make_method<2>(spec, kSpacing), b = make_method<2>(spec, kSpacing);
+  for (int k = 0; k < 30; ++k) {
+    a->step();
+    b->step();
+  }
+  BOOST_TEST(a->checksum() == b->checksum());
+  BOOST_TEST(a->time() == b->time());
+}
+
+BOOST_AUTO_TEST_CASE(a_run_resumed_through_the_registry_continues_bitwise) {
+  const CaseSpec spec = load_case(small_case);
+  const std::unique_ptr<Method<2>> straight = make_method<2>(spec, kSpacing);
+  BOOST_TEST(straight->writes_checkpoints());
+  BOOST_TEST(method_writes_checkpoints("sph"));
+  for (int k = 0; k < 20; ++k) straight->step();  // past a neighbour sort (every 16 steps)
+  const std::string ckpt = test::fresh_path("method_ckpt") + ".ckpt";
+  straight->write_checkpoint(ckpt, json{{"marker", 7}});
+  json run_log;
+  const std::unique_ptr<Method<2>> resumed = resume_method<2>(spec, kSpacing, ckpt, run_log);
+  BOOST_TEST(run_log.at("marker") == 7);
+  BOOST_TEST(resumed->steps() == 20);
+  BOOST_TEST(resumed->checksum() == straight->checksum());
+  for (int k = 0; k < 20; ++k) {
+    straight->step();
+    resumed->step();
+  }
+  BOOST_TEST(resumed->checksum() == straight->checksum());
+  BOOST_TEST(resumed->time() == straight->time());
+  // The same checkpoint at another spacing belongs to another run.
+  try {
+    resume_method<2>(spec, 2.0 * kSpacing, ckpt, run_log);
+    BOOST_ERROR("a checkpoint of another spacing was accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.json_path() == "/spacing");
+  }
+  fs::remove(ckpt);
+}
+
+BOOST_AUTO_TEST_CASE(an_unknown_method_is_rejected_with_the_case_file_and_json_path) {
+  json doc = small_case_json();
+  doc["method"] = "no_such_method";
+  const std::string file = write_case(doc);
+  const CaseSpec spec = load_case(file);  // the case's syntax is fine; the name is the registry's to judge
+  for (auto build : {+[](const CaseSpec& s) { check_method(s); }, +[](const CaseSpec& s) { make_method<2>(s, kSpacing); }}) {
+    try {
+      build(spec);
+      BOOST_ERROR("an unknown method was accepted");
+    } catch (const InputError& e) {
+      BOOST_TEST(e.file() == file);
+      BOOST_TEST(e.json_path() == "/method");
+      BOOST_TEST(e.rule().find("no_such_method") != std::string::npos);
+      BOOST_TEST(e.rule().find("\"sph\"") != std::string::npos);  // names what the build knows
+    }
+  }
+  doc["method"] = "sph";
+  doc["methods"] = {{"no_such_method", json::object()}};
+  try {
+    check_method(load_case(write_case(doc)));
+    BOOST_ERROR("an unknown method under \"methods\" was accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.json_path() == "/methods/no_such_method");
+  }
+  BOOST_TEST(method_names() == std::vector<std::string>{"sph"});
+}
+
+BOOST_AUTO_TEST_CASE(method_flag_must_name_a_method_the_case_supports) {
+  const CaseSpec spec = load_case(small_case);
+  BOOST_TEST(with_method(spec, "").method == "sph");
+  BOOST_TEST(with_method(spec, "sph").method == "sph");
+  try {
+    with_method(spec, "flip");
+    BOOST_ERROR("a method the case does not list was accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.json_path() == "/methods");
+    BOOST_TEST(e.rule().find("--method flip") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(the_sph_probe_is_refused_for_a_case_run_by_another_method) {
+  CaseSpec spec = load_case(small_case);
+  BOOST_CHECK_NO_THROW(require_sph(spec, "a test"));
+  spec.method = "flip";
+  try {
+    require_sph(spec, "a test");
+    BOOST_ERROR("the SPH probe was granted to a non-SPH case");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.json_path() == "/method");
+    BOOST_TEST(e.rule().find("a test needs the SPH method") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(sandcastle_run_exits_2_for_an_unknown_method_before_writing) {
+  json doc = small_case_json();
+  doc["method"] = "no_such_method";
+  const std::string file = write_case(doc);
+  const std::string out = test::fresh_path("method_out");
+  const test::ProcessResult r = test::run_sandcastle({"run", file, "--out", out}, 30.0);
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.err.find(file + ": /method: unknown method \"no_such_method\"") != std::string::npos, r.err);
+  BOOST_TEST(!fs::exists(out));
+  const test::ProcessResult flag = test::run_sandcastle({"run", small_case, "--out", out, "--method", "flip"}, 30.0);
+  BOOST_TEST(flag.exit_code == 2);
+  BOOST_TEST(flag.err.find("/methods: --method flip") != std::string::npos, flag.err);
+  BOOST_TEST(!fs::exists(out));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
