@@ -101,7 +101,8 @@ double max_speed(const FlipParticles<2>& ps) {
 
 /// A sand slab 20 x 4 cells on the floor of a long 2-D tank, gravity tilted by θ (the floor is the
 /// plane inclined by θ), wall friction μ_w = 0.5; returns the slab's mean velocity along the plane
-/// after t_end.
+/// after t_end. A cohesion of 1 kPa holds the slab's corners together (cohesionless, the corners at
+/// p ≈ 0 yield and crumble, as they should), so the slab slides or sticks as one block.
 double slab_on_incline(double theta_deg, double t_end) {
   auto params = tank<2>(Vec<2>(1.2, 0.16), 0.02);
   const double theta = theta_deg * pi / 180.0;
@@ -109,6 +110,7 @@ double slab_on_incline(double theta_deg, double t_end) {
   params.sand.rest_density = 1600.0;
   params.sand.friction_angle_deg = 30.0;
   params.sand.wall_friction = 0.5;
+  params.sand.cohesion = 1000.0;
   FlipParticles<2> ps;
   const MacGrid<2> grid(params.tank_lo, params.tank_hi, params.dx);
   seed_box<2>(grid, Vec<2>(0.4, 0.0), Vec<2>(0.8, 0.08), Phase::Sand, 1600.0, 0.5, 3, ps);

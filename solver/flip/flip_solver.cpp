@@ -53,7 +53,7 @@ void FlipSolver<D>::transfer_to_grid() {
 }
 
 template <int D>
-void FlipSolver<D>::sand_step(double dt) {
+void FlipSolver<D>::sand_step(double dt, const FaceField<D>& before_projection) {
   const SandCells<D> sand = classify_sand<D>(grid_, cells_, u_, p_, params_.sand, dt);
   apply_frictional_stress<D>(grid_, cells_, sand, dt, u_);
   const double mu = params_.sand.wall_mu();
@@ -64,7 +64,7 @@ void FlipSolver<D>::sand_step(double dt) {
     centre /= static_cast<double>(group.size());
     const std::vector<GroupFace> faces = group_faces<D>(grid_, cells_, group);
     RigidFit<D> fit = fit_rigid_motion<D>(grid_, faces, centre, u_);
-    group_wall_friction<D>(grid_, group, faces, p_, mu, dt, fit);
+    group_wall_friction<D>(grid_, group, faces, fit_rigid_motion<D>(grid_, faces, centre, before_projection), mu, fit);
     apply_rigid_motion<D>(grid_, faces, fit, u_);
   }
 }
@@ -91,12 +91,13 @@ double FlipSolver<D>::step() {
   for (int a = 0; a < D; ++a)  // gravity on every face that received particle mass
     for (std::size_t k = 0; k < u_[a].size(); ++k)
       if (weight_[a][k] > 0.0) u_[a][k] += params_.gravity[a] * dt;
+  const FaceField<D> before_projection = u_;
   try {
     stats_ = project<D>(grid_, cells_, dt, params_.cg_tolerance, params_.cg_max_iterations, u_, p_);
   } catch (const std::runtime_error& e) {
     throw BlowUpError(steps_, time_, -1, "grid", "pressure", e.what());
   }
-  sand_step(dt);
+  sand_step(dt, before_projection);
   const FaceField<D> known = known_faces<D>(grid_, cells_.label);
   extrapolate<D>(grid_, known, params_.extrapolation_layers, u_);
   extrapolate<D>(grid_, known, params_.extrapolation_layers, u_old_);

@@ -72,7 +72,7 @@ class FlipSolver {
 
  private:
   void transfer_to_grid();
-  void sand_step(double dt);
+  void sand_step(double dt, const FaceField<D>& before_projection);
   void update_particles(double dt);
 
   FlipParams<D> params_;

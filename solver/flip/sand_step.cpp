@@ -1,5 +1,6 @@
 #include "flip/sand_step.hpp"
 
+#include <algorithm>
 #include <map>
 
 #include "sand/frictional_stress.hpp"
@@ -160,13 +161,14 @@ std::vector<GroupFace> group_faces(const MacGrid<D>& grid, const CellState<D>& c
     const Index<D> c = MacGrid<D>::unflat(k, grid.n);
     for (int a = 0; a < D; ++a)
       for (const int s : {0, 1}) {
-        const Index<D> f = shifted<D>(c, a, s);
-        if (!grid.is_wall_face(a, f)) mass[{a, grid.face(a, f)}] += 0.5 * cells.density[k] * volume;
+        mass[{a, grid.face(a, shifted<D>(c, a, s))}] += 0.5 * cells.density[k] * volume;
       }
   }
   std::vector<GroupFace> out;
   out.reserve(mass.size());
-  for (const auto& [key, m] : mass) out.push_back({key.first, key.second, m});
+  for (const auto& [key, m] : mass)
+    out.push_back({key.first, key.second, m,
+                   grid.is_wall_face(key.first, MacGrid<D>::unflat(key.second, grid.face_dims(key.first)))});
   return out;
 }
 
@@ -194,17 +196,22 @@ RigidFit<D> fit_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace
 
 template <int D>
 void group_wall_friction(const MacGrid<D>& grid, const std::vector<std::size_t>& group,
-                         const std::vector<GroupFace>& faces, const std::vector<double>& p, double mu, double dt,
+                         const std::vector<GroupFace>& faces, const RigidFit<D>& before, double mu,
                          RigidFit<D>& fit) {
   Vec<D> axis_mass = Vec<D>::Zero();  // Σ m_f per velocity component: P_b = M_b v_b
   for (const auto& f : faces) axis_mass[f.axis] += f.mass;
-  const double area = std::pow(grid.dx, D - 1);
   for (int a = 0; a < D; ++a)
-    for (const int layer : {0, grid.n[a] - 1}) {
-      double impulse = 0.0;  // normal impulse of this wall on the group [N s]
-      for (const auto k : group)
-        if (MacGrid<D>::unflat(k, grid.n)[a] == layer) impulse += std::max(0.0, p[k]) * area * dt;
-      if (impulse == 0.0) continue;
+    for (const int side : {0, 1}) {
+      const int layer = side ? grid.n[a] - 1 : 0;
+      const bool touches = std::any_of(group.begin(), group.end(),
+                                       [&](std::size_t k) { return MacGrid<D>::unflat(k, grid.n)[a] == layer; });
+      if (!touches) continue;
+      const double inward = side ? -1.0 : 1.0;  // the wall's normal, into the tank
+      const double away = std::max(0.0, inward * fit.velocity[a]);  // no penetration of the rigid group
+      fit.velocity[a] = inward * away;
+      const double pushed = away - inward * before.velocity[a];
+      if (pushed <= 0.0) continue;
+      const double impulse = axis_mass[a] * pushed;  // normal impulse of this wall on the group [N s]
       Vec<D> tangential = axis_mass.cwiseProduct(fit.velocity);
       tangential[a] = 0.0;
       const double P = tangential.norm();
@@ -222,6 +229,7 @@ template <int D>
 void apply_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace>& faces, const RigidFit<D>& fit,
                         FaceField<D>& u) {
   for (const auto& f : faces) {
+    if (f.wall) continue;
     const Vec<D> r = grid.face_centre(f.axis, MacGrid<D>::unflat(f.index, grid.face_dims(f.axis))) - fit.centre;
     u[f.axis][f.index] = fit.velocity[f.axis] + spin_velocity<D>(fit.omega, r)[f.axis];
   }
@@ -241,8 +249,7 @@ void apply_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace>& fa
   template RigidFit<D> fit_rigid_motion<D>(const MacGrid<D>&, const std::vector<GroupFace>&, const Vec<D>&,         \
                                            const FaceField<D>&);                                                    \
   template void group_wall_friction<D>(const MacGrid<D>&, const std::vector<std::size_t>&,                          \
-                                       const std::vector<GroupFace>&, const std::vector<double>&, double, double,   \
-                                       RigidFit<D>&);                                                               \
+                                       const std::vector<GroupFace>&, const RigidFit<D>&, double, RigidFit<D>&);   \
   template void apply_rigid_motion<D>(const MacGrid<D>&, const std::vector<GroupFace>&, const RigidFit<D>&,         \
                                       FaceField<D>&);
 SC_FLIP_SAND(2)

@@ -60,11 +60,13 @@ void wall_friction(const MacGrid<D>& grid, const CellState<D>& cells, const Sand
 template <int D>
 std::vector<std::vector<std::size_t>> rigid_groups(const MacGrid<D>& grid, const std::vector<std::uint8_t>& rigid);
 
-/// A group's faces (non-wall faces of its cells) with their masses ρ Δx^D/2 per adjacent group cell.
+/// A group's faces (all faces of its cells) with their masses ρ Δx^D/2 per adjacent group cell;
+/// wall faces carry the group's momentum towards the wall but keep the wall's velocity.
 struct GroupFace {
   int axis;
   std::size_t index;
   double mass;
+  bool wall;
 };
 
 /// The rigid motion of a group: velocity, and angular velocity about `centre`.
@@ -88,17 +90,19 @@ RigidFit<D> fit_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace
                              const FaceField<D>& u);
 
 /// Coulomb friction of the walls on a rigid group [Zhu-Bridson 2005: Frictional Boundary
-/// Conditions] applied to the group as one body: for each wall the group's cells touch, the normal
-/// impulse is N = Σ p Δx^(D−1) Δt over those cells (the discrete wall reaction of the projection);
-/// the tangential momentum (Σ m_f per component times v) shrinks by μ_w N, and a
-/// group whose tangential momentum friction can absorb stops altogether (a group resting on a static
-/// solid stays at rest).
+/// Conditions] applied to the group as one body, with the paper's normal impulse: the normal
+/// velocity the boundary condition removed. For each wall the group's cells touch, the group may
+/// not move into the wall (its normal velocity v_n is clipped at 0), and the impulse is the change
+/// of v_n from before the projection (`before`: the rigid fit of the velocities before it),
+/// N = M_a Δv_n with M_a the mass of the group's a-faces; the
+/// tangential momentum (M_b v_b) shrinks by μ_w N, and a group whose tangential momentum friction can
+/// absorb stops altogether (a group resting on a static solid stays at rest).
 template <int D>
 void group_wall_friction(const MacGrid<D>& grid, const std::vector<std::size_t>& group,
-                         const std::vector<GroupFace>& faces, const std::vector<double>& p, double mu, double dt,
+                         const std::vector<GroupFace>& faces, const RigidFit<D>& before, double mu,
                          RigidFit<D>& fit);
 
-/// Sets every face of the group to the rigid motion's velocity component at the face centre.
+/// Sets every non-wall face of the group to the rigid motion's velocity component at its centre.
 template <int D>
 void apply_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace>& faces, const RigidFit<D>& fit,
                         FaceField<D>& u);
