@@ -1,0 +1,117 @@
+#include "flip/flip_solver.hpp"
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include "core/errors.hpp"
+#include "flip/extrapolate.hpp"
+
+namespace sc::flip {
+
+template <int D>
+void seed_box(const MacGrid<D>& grid, const Vec<D>& lo, const Vec<D>& hi, Phase phase, double density, double jitter,
+              unsigned seed, FlipParticles<D>& ps) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(-0.5, 0.5);
+  const double sub = 0.5 * grid.dx;
+  Index<D> dims{};
+  for (int d = 0; d < D; ++d) dims[d] = static_cast<int>(std::lround((hi[d] - lo[d]) / sub));
+  const double mass = density * std::pow(grid.dx, D) / (1 << D);
+  for (std::size_t k = 0; k < MacGrid<D>::count(dims); ++k) {
+    const Index<D> s = MacGrid<D>::unflat(k, dims);
+    Vec<D> x;
+    for (int d = 0; d < D; ++d) x[d] = lo[d] + (s[d] + 0.5 + jitter * uniform(rng)) * sub;
+    ps.x.push_back(x);
+    ps.v.push_back(Vec<D>::Zero());
+    ps.m.push_back(mass);
+    ps.phase.push_back(static_cast<std::uint8_t>(phase));
+  }
+}
+
+template <int D>
+FlipSolver<D>::FlipSolver(const FlipParams<D>& params, FlipParticles<D> particles)
+    : params_(params), ps_(std::move(particles)), grid_(params.tank_lo, params.tank_hi, params.dx) {}
+
+template <int D>
+double FlipSolver<D>::next_dt() const {
+  double vmax = 0.0;
+  for (const auto& v : ps_.v) vmax = std::max(vmax, v.norm());
+  return vmax > 0.0 ? std::min(params_.dt_max, params_.cfl * grid_.dx / vmax) : params_.dt_max;
+}
+
+template <int D>
+void FlipSolver<D>::transfer_to_grid() {
+  bins_.build(grid_, ps_.x);
+  particles_to_grid<D>(grid_, bins_, ps_.x, ps_.v, ps_.m, u_, weight_);
+  cells_.label = label_cells<D>(grid_, bins_, ps_.m, ps_.phase);
+  cells_.density.assign(grid_.cell_count(), 0.0);
+  for (std::size_t c = 0; c < cells_.label.size(); ++c)
+    if (is_fluid(cells_.label[c]))
+      cells_.density[c] = cells_.label[c] == Cell::Sand ? params_.sand.rest_density : params_.water_density;
+  u_old_ = u_;
+}
+
+template <int D>
+void FlipSolver<D>::sand_step(double dt, const FaceField<D>& before_projection) {
+  const SandCells<D> sand = classify_sand<D>(grid_, cells_, u_, p_, params_.sand, dt);
+  apply_frictional_stress<D>(grid_, cells_, sand, dt, u_);
+  const double mu = params_.sand.wall_mu();
+  wall_friction<D>(grid_, cells_, sand, p_, mu, dt, u_);
+  for (const auto& group : rigid_groups<D>(grid_, sand.rigid)) {
+    Vec<D> centre = Vec<D>::Zero();
+    for (const auto k : group) centre += grid_.cell_centre(MacGrid<D>::unflat(k, grid_.n));
+    centre /= static_cast<double>(group.size());
+    const std::vector<GroupFace> faces = group_faces<D>(grid_, cells_, group);
+    RigidFit<D> fit = fit_rigid_motion<D>(grid_, faces, centre, u_);
+    group_wall_friction<D>(grid_, group, faces, fit_rigid_motion<D>(grid_, faces, centre, before_projection), mu, fit);
+    apply_rigid_motion<D>(grid_, faces, fit, u_);
+  }
+}
+
+template <int D>
+void FlipSolver<D>::update_particles(double dt) {
+  const long n = static_cast<long>(ps_.size());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    const double ratio = ps_.is_sand(static_cast<std::size_t>(i)) ? 0.0 : params_.flip_ratio;
+    ps_.v[i] = grid_to_particle<D>(grid_, u_, u_old_, ps_.x[i], ps_.v[i], ratio);
+    ps_.x[i] = advect_rk2<D>(grid_, u_, ps_.x[i], dt);
+  }
+  for (std::size_t i = 0; i < ps_.size(); ++i)
+    if (!ps_.x[i].allFinite() || !ps_.v[i].allFinite())
+      throw BlowUpError(steps_, time_, static_cast<long>(i), ps_.is_sand(i) ? "sand" : "water",
+                        ps_.x[i].allFinite() ? "v" : "x", "not finite");
+}
+
+template <int D>
+double FlipSolver<D>::step() {
+  const double dt = next_dt();
+  transfer_to_grid();
+  for (int a = 0; a < D; ++a)  // gravity on every face that received particle mass
+    for (std::size_t k = 0; k < u_[a].size(); ++k)
+      if (weight_[a][k] > 0.0) u_[a][k] += params_.gravity[a] * dt;
+  const FaceField<D> before_projection = u_;
+  try {
+    stats_ = project<D>(grid_, cells_, dt, params_.cg_tolerance, params_.cg_max_iterations, u_, p_);
+  } catch (const std::runtime_error& e) {
+    throw BlowUpError(steps_, time_, -1, "grid", "pressure", e.what());
+  }
+  sand_step(dt, before_projection);
+  const FaceField<D> known = known_faces<D>(grid_, cells_.label);
+  extrapolate<D>(grid_, known, params_.extrapolation_layers, u_);
+  extrapolate<D>(grid_, known, params_.extrapolation_layers, u_old_);
+  update_particles(dt);
+  time_ += dt;
+  ++steps_;
+  return dt;
+}
+
+template void seed_box<2>(const MacGrid<2>&, const Vec<2>&, const Vec<2>&, Phase, double, double, unsigned,
+                          FlipParticles<2>&);
+template void seed_box<3>(const MacGrid<3>&, const Vec<3>&, const Vec<3>&, Phase, double, double, unsigned,
+                          FlipParticles<3>&);
+template class FlipSolver<2>;
+template class FlipSolver<3>;
+
+}  // namespace sc::flip

@@ -1,0 +1,137 @@
+// Staggered MAC grid of the Zhu & Bridson 2005 PIC/FLIP solver, in 2-D and 3-D.
+//
+// [Zhu-Bridson 2005: Fluid Simulation Revisited] store pressure and the cell labels at cell centres
+// and the velocity component a on the faces normal to axis a. The grid covers the tank box
+// [lo, lo + n dx]; the outermost faces of each axis are the tank's static solid walls.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace sc::flip {
+
+template <int D>
+using Index = std::array<int, D>;
+
+/// One velocity array per axis: FaceField[a][face] is the component a on a face normal to axis a.
+template <int D>
+using FaceField = std::array<std::vector<double>, D>;
+
+/// What a cell holds: no particle (air, p = 0), or fluid of the phase with the larger mass.
+enum class Cell : std::uint8_t { Air = 0, Water = 1, Sand = 2 };
+
+inline bool is_fluid(Cell c) { return c != Cell::Air; }
+
+template <int D>
+struct MacGrid {
+  Vec<D> lo = Vec<D>::Zero();
+  double dx = 1.0;
+  Index<D> n{};  ///< cells per axis
+
+  MacGrid() = default;
+  /// The grid over the box [lo, hi]: n = round((hi − lo)/dx) ≥ 2 cells per axis, all of the width
+  /// (hi₀ − lo₀)/n₀ (the box's extents should be multiples of dx).
+  MacGrid(const Vec<D>& box_lo, const Vec<D>& box_hi, double cell_width);
+
+  static std::size_t count(const Index<D>& dims) {
+    std::size_t c = 1;
+    for (int d = 0; d < D; ++d) c *= static_cast<std::size_t>(dims[d]);
+    return c;
+  }
+  /// Flat index, axis 0 fastest.
+  static std::size_t flat(const Index<D>& i, const Index<D>& dims) {
+    std::size_t k = 0;
+    for (int d = D - 1; d >= 0; --d) k = k * static_cast<std::size_t>(dims[d]) + static_cast<std::size_t>(i[d]);
+    return k;
+  }
+  static Index<D> unflat(std::size_t k, const Index<D>& dims) {
+    Index<D> i{};
+    for (int d = 0; d < D; ++d) {
+      i[d] = static_cast<int>(k % static_cast<std::size_t>(dims[d]));
+      k /= static_cast<std::size_t>(dims[d]);
+    }
+    return i;
+  }
+  static bool inside(const Index<D>& i, const Index<D>& dims) {
+    for (int d = 0; d < D; ++d)
+      if (i[d] < 0 || i[d] >= dims[d]) return false;
+    return true;
+  }
+
+  std::size_t cell_count() const { return count(n); }
+  Index<D> face_dims(int a) const {
+    Index<D> m = n;
+    ++m[a];
+    return m;
+  }
+  std::size_t face_count(int a) const { return count(face_dims(a)); }
+  std::size_t cell(const Index<D>& c) const { return flat(c, n); }
+  std::size_t face(int a, const Index<D>& f) const { return flat(f, face_dims(a)); }
+  /// A face on the tank's boundary: its normal velocity is the wall's (zero).
+  bool is_wall_face(int a, const Index<D>& f) const { return f[a] == 0 || f[a] == n[a]; }
+
+  Vec<D> cell_centre(const Index<D>& c) const {
+    Vec<D> x;
+    for (int d = 0; d < D; ++d) x[d] = lo[d] + (c[d] + 0.5) * dx;
+    return x;
+  }
+  Vec<D> face_centre(int a, const Index<D>& f) const {
+    Vec<D> x;
+    for (int d = 0; d < D; ++d) x[d] = lo[d] + (f[d] + (d == a ? 0.0 : 0.5)) * dx;
+    return x;
+  }
+  /// The cell containing x (clamped to the grid).
+  Index<D> cell_of(const Vec<D>& x) const {
+    Index<D> c{};
+    for (int d = 0; d < D; ++d) c[d] = std::clamp(static_cast<int>(std::floor((x[d] - lo[d]) / dx)), 0, n[d] - 1);
+    return c;
+  }
+  FaceField<D> zero_faces() const {
+    FaceField<D> u;
+    for (int a = 0; a < D; ++a) u[a].assign(face_count(a), 0.0);
+    return u;
+  }
+
+  /// Multilinear interpolation of the face values of component a at x [Zhu-Bridson 2005: Updating
+  /// Particle Velocities] ("trilinearly interpolate"); exact for fields linear in x.
+  double interpolate(int a, const std::vector<double>& field, const Vec<D>& x) const {
+    const Index<D> dims = face_dims(a);
+    Index<D> i0{};
+    std::array<double, D> t{};
+    for (int d = 0; d < D; ++d) {
+      const double s = (x[d] - lo[d]) / dx - (d == a ? 0.0 : 0.5);
+      i0[d] = std::clamp(static_cast<int>(std::floor(s)), 0, dims[d] - 2);
+      t[d] = std::clamp(s - i0[d], 0.0, 1.0);
+    }
+    double value = 0.0;
+    for (int corner = 0; corner < (1 << D); ++corner) {
+      Index<D> i = i0;
+      double w = 1.0;
+      for (int d = 0; d < D; ++d) {
+        const bool up = (corner >> d) & 1;
+        i[d] += up;
+        w *= up ? t[d] : 1.0 - t[d];
+      }
+      value += w * field[flat(i, dims)];
+    }
+    return value;
+  }
+  Vec<D> velocity_at(const FaceField<D>& u, const Vec<D>& x) const {
+    Vec<D> v;
+    for (int a = 0; a < D; ++a) v[a] = interpolate(a, u[a], x);
+    return v;
+  }
+};
+
+template <int D>
+MacGrid<D>::MacGrid(const Vec<D>& box_lo, const Vec<D>& box_hi, double cell_width) : lo(box_lo) {
+  for (int d = 0; d < D; ++d) n[d] = std::max(2, static_cast<int>(std::lround((box_hi[d] - box_lo[d]) / cell_width)));
+  dx = (box_hi[0] - box_lo[0]) / n[0];
+}
+
+}  // namespace sc::flip

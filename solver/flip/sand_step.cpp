@@ -1,0 +1,259 @@
+#include "flip/sand_step.hpp"
+
+#include <algorithm>
+#include <map>
+
+#include "sand/frictional_stress.hpp"
+#include "sand/yield.hpp"
+
+namespace sc::flip {
+
+namespace {
+
+template <int D>
+Index<D> shifted(Index<D> c, int axis, int by) {
+  c[axis] += by;
+  return c;
+}
+
+template <int D>
+bool fluid_at(const MacGrid<D>& grid, const CellState<D>& cells, const Index<D>& c) {
+  return MacGrid<D>::inside(c, grid.n) && is_fluid(cells.label[grid.cell(c)]);
+}
+
+/// u_a at the centre of cell c: the mean of its two a-faces.
+template <int D>
+double centred(const MacGrid<D>& grid, const FaceField<D>& u, int a, const Index<D>& c) {
+  return 0.5 * (u[a][grid.face(a, c)] + u[a][grid.face(a, shifted<D>(c, a, 1))]);
+}
+
+/// ∂u_a/∂x_b (b ≠ a) at the centre of cell c.
+template <int D>
+double cross_derivative(const MacGrid<D>& grid, const CellState<D>& cells, const FaceField<D>& u, int a, int b,
+                        const Index<D>& c) {
+  const Index<D> lo = shifted<D>(c, b, -1), hi = shifted<D>(c, b, 1);
+  const bool fl = fluid_at<D>(grid, cells, lo), fh = fluid_at<D>(grid, cells, hi);
+  if (fl && fh) return (centred<D>(grid, u, a, hi) - centred<D>(grid, u, a, lo)) / (2.0 * grid.dx);
+  if (fh) return (centred<D>(grid, u, a, hi) - centred<D>(grid, u, a, c)) / grid.dx;
+  if (fl) return (centred<D>(grid, u, a, c) - centred<D>(grid, u, a, lo)) / grid.dx;
+  return 0.0;
+}
+
+}  // namespace
+
+template <int D>
+Mat<D> cell_strain_rate(const MacGrid<D>& grid, const CellState<D>& cells, const FaceField<D>& u, const Index<D>& c) {
+  Mat<D> G;
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < D; ++b)
+      G(a, b) = a == b ? (u[a][grid.face(a, shifted<D>(c, a, 1))] - u[a][grid.face(a, c)]) / grid.dx
+                       : cross_derivative<D>(grid, cells, u, a, b, c);
+  return 0.5 * (G + G.transpose());
+}
+
+template <int D>
+SandCells<D> classify_sand(const MacGrid<D>& grid, const CellState<D>& cells, const FaceField<D>& u,
+                           const std::vector<double>& p, const SandParams& sand, double dt) {
+  const std::size_t n = grid.cell_count();
+  SandCells<D> out;
+  out.yielding.assign(n, 0);
+  out.rigid.assign(n, 0);
+  out.stress.assign(n, Mat<D>::Zero());
+  const double sin_phi = sand.sin_phi(), strength = yield_strength_factor(sand.yield_surface);
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < static_cast<long>(n); ++k) {
+    if (cells.label[k] != Cell::Sand) continue;
+    const Mat<D> strain = cell_strain_rate<D>(grid, cells, u, MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n));
+    const Mat<D> sigma_rigid = rigid_stress<D>(strain, cells.density[k], grid.dx, dt);
+    if (is_rigid<D>(sigma_rigid, p[k], sin_phi, sand.cohesion, strength)) {
+      out.rigid[k] = 1;
+    } else {
+      out.yielding[k] = 1;
+      out.stress[k] = -frictional_stress<D>(strain, p[k], sin_phi);
+    }
+  }
+  return out;
+}
+
+template <int D>
+void apply_frictional_stress(const MacGrid<D>& grid, const CellState<D>& cells, const SandCells<D>& sand_cells,
+                             double dt, FaceField<D>& u) {
+  const auto tau = [&](const Index<D>& c, int a, int b) {
+    if (!MacGrid<D>::inside(c, grid.n)) return 0.0;
+    const std::size_t k = grid.cell(c);
+    return sand_cells.yielding[k] ? sand_cells.stress[k](a, b) : 0.0;
+  };
+  for (int a = 0; a < D; ++a) {
+    const Index<D> dims = grid.face_dims(a);
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < static_cast<long>(u[a].size()); ++k) {
+      const Index<D> c1 = MacGrid<D>::unflat(static_cast<std::size_t>(k), dims);
+      if (grid.is_wall_face(a, c1)) continue;
+      const Index<D> c0 = shifted<D>(c1, a, -1);
+      if (!sand_cells.yielding[grid.cell(c0)] && !sand_cells.yielding[grid.cell(c1)]) continue;
+      double div = (tau(c1, a, a) - tau(c0, a, a)) / grid.dx;
+      for (int b = 0; b < D; ++b) {
+        if (b == a) continue;
+        const auto edge = [&](int s) {
+          return 0.25 * (tau(c0, a, b) + tau(c1, a, b) + tau(shifted<D>(c0, b, s), a, b) + tau(shifted<D>(c1, b, s), a, b));
+        };
+        div += (edge(1) - edge(-1)) / grid.dx;
+      }
+      u[a][k] += dt / face_density<D>(grid, cells, a, c1) * div;
+    }
+  }
+}
+
+template <int D>
+void wall_friction(const MacGrid<D>& grid, const CellState<D>& cells, const SandCells<D>& sand_cells,
+                   const std::vector<double>& p, double mu, double dt, FaceField<D>& u) {
+  for (int a = 0; a < D; ++a)
+    for (const int layer : {0, grid.n[a] - 1})
+      for (int b = 0; b < D; ++b) {
+        if (b == a) continue;
+        const Index<D> dims = grid.face_dims(b);
+#pragma omp parallel for schedule(static)
+        for (long k = 0; k < static_cast<long>(u[b].size()); ++k) {
+          const Index<D> c1 = MacGrid<D>::unflat(static_cast<std::size_t>(k), dims);
+          if (c1[a] != layer || grid.is_wall_face(b, c1)) continue;
+          const std::size_t k0 = grid.cell(shifted<D>(c1, b, -1)), k1 = grid.cell(c1);
+          if (!sand_cells.yielding[k0] && !sand_cells.yielding[k1]) continue;
+          const double pressure = 0.5 * (std::max(0.0, p[k0]) + std::max(0.0, p[k1]));
+          const double bound = mu * pressure * dt / (face_density<D>(grid, cells, b, c1) * grid.dx);
+          const double speed = std::abs(u[b][k]);
+          u[b][k] = speed > bound ? u[b][k] * (1.0 - bound / speed) : 0.0;
+        }
+      }
+}
+
+template <int D>
+std::vector<std::vector<std::size_t>> rigid_groups(const MacGrid<D>& grid, const std::vector<std::uint8_t>& rigid) {
+  std::vector<std::vector<std::size_t>> groups;
+  std::vector<std::uint8_t> seen(rigid.size(), 0);
+  for (std::size_t seed = 0; seed < rigid.size(); ++seed) {
+    if (!rigid[seed] || seen[seed]) continue;
+    std::vector<std::size_t> group{seed};
+    seen[seed] = 1;
+    for (std::size_t head = 0; head < group.size(); ++head) {
+      const Index<D> c = MacGrid<D>::unflat(group[head], grid.n);
+      for (int a = 0; a < D; ++a)
+        for (const int s : {-1, 1}) {
+          const Index<D> nb = shifted<D>(c, a, s);
+          if (!MacGrid<D>::inside(nb, grid.n)) continue;
+          const std::size_t k = grid.cell(nb);
+          if (rigid[k] && !seen[k]) {
+            seen[k] = 1;
+            group.push_back(k);
+          }
+        }
+    }
+    groups.push_back(std::move(group));
+  }
+  return groups;
+}
+
+template <int D>
+std::vector<GroupFace> group_faces(const MacGrid<D>& grid, const CellState<D>& cells,
+                                   const std::vector<std::size_t>& group) {
+  std::map<std::pair<int, std::size_t>, double> mass;
+  const double volume = std::pow(grid.dx, D);
+  for (const auto k : group) {
+    const Index<D> c = MacGrid<D>::unflat(k, grid.n);
+    for (int a = 0; a < D; ++a)
+      for (const int s : {0, 1}) {
+        mass[{a, grid.face(a, shifted<D>(c, a, s))}] += 0.5 * cells.density[k] * volume;
+      }
+  }
+  std::vector<GroupFace> out;
+  out.reserve(mass.size());
+  for (const auto& [key, m] : mass)
+    out.push_back({key.first, key.second, m,
+                   grid.is_wall_face(key.first, MacGrid<D>::unflat(key.second, grid.face_dims(key.first)))});
+  return out;
+}
+
+template <int D>
+RigidFit<D> fit_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace>& faces, const Vec<D>& centre,
+                             const FaceField<D>& u) {
+  constexpr int K = D + angular_dim<D>;
+  Eigen::Matrix<double, K, K> A = Eigen::Matrix<double, K, K>::Zero();
+  Eigen::Matrix<double, K, 1> b = Eigen::Matrix<double, K, 1>::Zero();
+  for (const auto& f : faces) {
+    const Vec<D> r = grid.face_centre(f.axis, MacGrid<D>::unflat(f.index, grid.face_dims(f.axis))) - centre;
+    const Vec<D> e = Vec<D>::Unit(f.axis);
+    Eigen::Matrix<double, K, 1> J;
+    J << e, moment<D>(r, e);
+    A += f.mass * J * J.transpose();
+    b += f.mass * u[f.axis][f.index] * J;
+  }
+  const Eigen::Matrix<double, K, 1> q = Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, K, K>>(A).solve(b);
+  RigidFit<D> fit;
+  fit.centre = centre;
+  fit.velocity = q.template head<D>();
+  fit.omega = q.template tail<angular_dim<D>>();
+  return fit;
+}
+
+template <int D>
+void group_wall_friction(const MacGrid<D>& grid, const std::vector<std::size_t>& group,
+                         const std::vector<GroupFace>& faces, const RigidFit<D>& before, double mu,
+                         RigidFit<D>& fit) {
+  Vec<D> axis_mass = Vec<D>::Zero();  // Σ m_f per velocity component: P_b = M_b v_b
+  for (const auto& f : faces) axis_mass[f.axis] += f.mass;
+  for (int a = 0; a < D; ++a)
+    for (const int side : {0, 1}) {
+      const int layer = side ? grid.n[a] - 1 : 0;
+      const bool touches = std::any_of(group.begin(), group.end(),
+                                       [&](std::size_t k) { return MacGrid<D>::unflat(k, grid.n)[a] == layer; });
+      if (!touches) continue;
+      const double inward = side ? -1.0 : 1.0;  // the wall's normal, into the tank
+      const double away = std::max(0.0, inward * fit.velocity[a]);  // no penetration of the rigid group
+      fit.velocity[a] = inward * away;
+      const double pushed = away - inward * before.velocity[a];
+      if (pushed <= 0.0) continue;
+      const double impulse = axis_mass[a] * pushed;  // normal impulse of this wall on the group [N s]
+      Vec<D> tangential = axis_mass.cwiseProduct(fit.velocity);
+      tangential[a] = 0.0;
+      const double P = tangential.norm();
+      if (P <= mu * impulse) {
+        fit.velocity.setZero();
+        fit.omega.setZero();
+        return;
+      }
+      for (int b = 0; b < D; ++b)
+        if (b != a) fit.velocity[b] -= mu * impulse * fit.velocity[b] / P;
+    }
+}
+
+template <int D>
+void apply_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace>& faces, const RigidFit<D>& fit,
+                        FaceField<D>& u) {
+  for (const auto& f : faces) {
+    if (f.wall) continue;
+    const Vec<D> r = grid.face_centre(f.axis, MacGrid<D>::unflat(f.index, grid.face_dims(f.axis))) - fit.centre;
+    u[f.axis][f.index] = fit.velocity[f.axis] + spin_velocity<D>(fit.omega, r)[f.axis];
+  }
+}
+
+#define SC_FLIP_SAND(D)                                                                                            \
+  template Mat<D> cell_strain_rate<D>(const MacGrid<D>&, const CellState<D>&, const FaceField<D>&, const Index<D>&); \
+  template SandCells<D> classify_sand<D>(const MacGrid<D>&, const CellState<D>&, const FaceField<D>&,              \
+                                         const std::vector<double>&, const SandParams&, double);                   \
+  template void apply_frictional_stress<D>(const MacGrid<D>&, const CellState<D>&, const SandCells<D>&, double,     \
+                                           FaceField<D>&);                                                          \
+  template void wall_friction<D>(const MacGrid<D>&, const CellState<D>&, const SandCells<D>&,                       \
+                                 const std::vector<double>&, double, double, FaceField<D>&);                        \
+  template std::vector<std::vector<std::size_t>> rigid_groups<D>(const MacGrid<D>&, const std::vector<std::uint8_t>&); \
+  template std::vector<GroupFace> group_faces<D>(const MacGrid<D>&, const CellState<D>&,                           \
+                                                 const std::vector<std::size_t>&);                                 \
+  template RigidFit<D> fit_rigid_motion<D>(const MacGrid<D>&, const std::vector<GroupFace>&, const Vec<D>&,         \
+                                           const FaceField<D>&);                                                    \
+  template void group_wall_friction<D>(const MacGrid<D>&, const std::vector<std::size_t>&,                          \
+                                       const std::vector<GroupFace>&, const RigidFit<D>&, double, RigidFit<D>&);   \
+  template void apply_rigid_motion<D>(const MacGrid<D>&, const std::vector<GroupFace>&, const RigidFit<D>&,         \
+                                      FaceField<D>&);
+SC_FLIP_SAND(2)
+SC_FLIP_SAND(3)
+#undef SC_FLIP_SAND
+
+}  // namespace sc::flip

@@ -1,0 +1,124 @@
+#include "flip/transfer.hpp"
+
+namespace sc::flip {
+
+template <int D>
+void ParticleBins<D>::build(const MacGrid<D>& grid, std::span<const Vec<D>> x) {
+  const std::size_t cells = grid.cell_count();
+  std::vector<std::size_t> cell_of(x.size());
+  start.assign(cells + 1, 0);
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    cell_of[p] = grid.cell(grid.cell_of(x[p]));
+    ++start[cell_of[p] + 1];
+  }
+  for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
+  order.resize(x.size());
+  for (std::size_t p = 0; p < x.size(); ++p) order[next[cell_of[p]]++] = p;
+}
+
+namespace {
+
+/// The trilinear weight of [Zhu-Bridson 2005: Transferring to the Grid] between a particle at x
+/// and a face at xf.
+template <int D>
+double hat_weight(const Vec<D>& x, const Vec<D>& xf, double dx) {
+  double w = 1.0;
+  for (int d = 0; d < D; ++d) w *= std::max(0.0, 1.0 - std::abs(x[d] - xf[d]) / dx);
+  return w;
+}
+
+/// Σ w m and Σ w m v_a over the particles within one cell width of face f (axis a): the cells
+/// f − e_a and f along a, f − 1 .. f + 1 along the other axes, in fixed cell and particle order.
+template <int D>
+std::pair<double, double> gather_face(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
+                                      std::span<const Vec<D>> v, std::span<const double> m, int a,
+                                      const Index<D>& f) {
+  const Vec<D> xf = grid.face_centre(a, f);
+  Index<D> lo{}, extent{};
+  for (int d = 0; d < D; ++d) {
+    lo[d] = f[d] - 1;
+    extent[d] = d == a ? 2 : 3;
+  }
+  double wm = 0.0, wmv = 0.0;
+  const std::size_t neighbours = MacGrid<D>::count(extent);
+  for (std::size_t k = 0; k < neighbours; ++k) {
+    Index<D> c = MacGrid<D>::unflat(k, extent);
+    for (int d = 0; d < D; ++d) c[d] += lo[d];
+    if (!MacGrid<D>::inside(c, grid.n)) continue;
+    for (const auto p : bins.in(grid.cell(c))) {
+      const double w = hat_weight<D>(x[p], xf, grid.dx) * m[p];
+      wm += w;
+      wmv += w * v[p][a];
+    }
+  }
+  return {wm, wmv};
+}
+
+}  // namespace
+
+template <int D>
+void particles_to_grid(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
+                       std::span<const Vec<D>> v, std::span<const double> m, FaceField<D>& u, FaceField<D>& weight) {
+  u = grid.zero_faces();
+  weight = grid.zero_faces();
+  for (int a = 0; a < D; ++a) {
+    const Index<D> dims = grid.face_dims(a);
+    const long faces = static_cast<long>(grid.face_count(a));
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < faces; ++k) {
+      const auto [wm, wmv] = gather_face<D>(grid, bins, x, v, m, a, MacGrid<D>::unflat(static_cast<std::size_t>(k), dims));
+      weight[a][k] = wm;
+      u[a][k] = wm > 0.0 ? wmv / wm : 0.0;
+    }
+  }
+}
+
+template <int D>
+std::vector<Cell> label_cells(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const double> m,
+                              std::span<const std::uint8_t> phase) {
+  std::vector<Cell> label(grid.cell_count(), Cell::Air);
+  for (std::size_t c = 0; c < label.size(); ++c) {
+    double sand_mass = 0.0, water_mass = 0.0;
+    for (const auto p : bins.in(c)) (phase[p] == static_cast<std::uint8_t>(Phase::Sand) ? sand_mass : water_mass) += m[p];
+    if (sand_mass + water_mass > 0.0) label[c] = sand_mass >= water_mass ? Cell::Sand : Cell::Water;
+  }
+  return label;
+}
+
+template <int D>
+Vec<D> grid_to_particle(const MacGrid<D>& grid, const FaceField<D>& u, const FaceField<D>& u_old, const Vec<D>& x,
+                        const Vec<D>& v, double flip_ratio) {
+  Vec<D> pic, change;
+  for (int a = 0; a < D; ++a) {
+    pic[a] = grid.interpolate(a, u[a], x);
+    change[a] = pic[a] - grid.interpolate(a, u_old[a], x);
+  }
+  return (1.0 - flip_ratio) * pic + flip_ratio * (v + change);
+}
+
+template <int D>
+Vec<D> advect_rk2(const MacGrid<D>& grid, const FaceField<D>& u, const Vec<D>& x, double dt) {
+  const Vec<D> mid = x + 0.5 * dt * grid.velocity_at(u, x);
+  Vec<D> out = x + dt * grid.velocity_at(u, mid);
+  const double margin = 0.1 * grid.dx;
+  for (int d = 0; d < D; ++d)
+    out[d] = std::clamp(out[d], grid.lo[d] + margin, grid.lo[d] + grid.n[d] * grid.dx - margin);
+  return out;
+}
+
+#define SC_FLIP_TRANSFER(D)                                                                                     \
+  template struct ParticleBins<D>;                                                                              \
+  template void particles_to_grid<D>(const MacGrid<D>&, const ParticleBins<D>&, std::span<const Vec<D>>,       \
+                                     std::span<const Vec<D>>, std::span<const double>, FaceField<D>&,          \
+                                     FaceField<D>&);                                                            \
+  template std::vector<Cell> label_cells<D>(const MacGrid<D>&, const ParticleBins<D>&, std::span<const double>, \
+                                            std::span<const std::uint8_t>);                                    \
+  template Vec<D> grid_to_particle<D>(const MacGrid<D>&, const FaceField<D>&, const FaceField<D>&,              \
+                                      const Vec<D>&, const Vec<D>&, double);                                   \
+  template Vec<D> advect_rk2<D>(const MacGrid<D>&, const FaceField<D>&, const Vec<D>&, double);
+SC_FLIP_TRANSFER(2)
+SC_FLIP_TRANSFER(3)
+#undef SC_FLIP_TRANSFER
+
+}  // namespace sc::flip
