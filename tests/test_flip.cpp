@@ -263,7 +263,7 @@ BOOST_AUTO_TEST_CASE(rigid_group_projection_keeps_momenta) {
 
 // [Zhu-Bridson 2005: Frictional Boundary Conditions] with [Zhu-Bridson 2005: rigid stress]: a sand
 // slab on a plane tilted by θ with wall friction μ_w = 0.5 (26.6°) stays at rest at θ = 20° and at
-// θ = 35° slides with a = g (sin θ − μ_w cos θ) within 2 % (METHOD_REFERENCES.md 1b, block on an
+// θ = 35° slides with a = g (sin θ − μ_w cos θ) within 2 % (docs/references.md, FLIP: block on an
 // incline).
 BOOST_AUTO_TEST_CASE(slab_on_incline_sticks_or_slides) {
   BOOST_TEST(std::abs(slab_on_incline(20.0, 0.2)) < 1e-9);

@@ -9,7 +9,7 @@ namespace sc {
 
 /// Adds to run.observed (limits from the case's validation.metrics; none = informational):
 ///   adaptive_mass_rel_error, adaptive_momentum_error, adaptive_moment_error (Σ m x: the centre of mass),
-///   adaptive_water_rel_error: the largest error of one pass (REFERENCES.md §7: exact);
+///   adaptive_water_rel_error: the largest error of one pass (docs/references.md §7: exact);
 ///   merge_energy_removed [J], splits, merges;
 /// and, with "uniform_twin": {"series": [NAME, ...], "metrics": [METRIC, ...]} (both optional) in
 /// the validation block, runs the case without its "adaptive" section into <out>/uniform and adds

@@ -1,4 +1,4 @@
-// report.json (schema_version 1, ARCHITECTURE.md "Contracts": extend it, never rename a field),
+// report.json (schema_version 1, docs/architecture.md "Contracts": extend it, never rename a field),
 // summary.md, and the call to the plotting script.
 #pragma once
 #include <string>

@@ -10,7 +10,7 @@
 
 namespace sc {
 
-/// Exit codes of the command (ARCHITECTURE.md "Contracts").
+/// Exit codes of the command (docs/architecture.md "Contracts").
 enum ExitCode { kSuccess = 0, kCaseFailed = 1, kBadInput = 2, kBlowUp = 3 };
 
 /// One simulation of a case at one spacing.

@@ -19,8 +19,11 @@ inline double green_ampt_infiltration(double K, double psi, double dtheta, doubl
 /// Depth of the wetting front z_f = F/Δθ [m].
 inline double green_ampt_front_depth(double F, double dtheta) { return F / dtheta; }
 
-/// Infiltration rate f = K (1 + ψΔθ/F) [m/s].
-inline double green_ampt_rate(double K, double psi, double dtheta, double F) { return K * (1.0 + psi * dtheta / F); }
+/// Infiltration rate dF/dt = K (1 + (ψ + h)Δθ/F) [m/s] under a pond of depth h [m] (h = 0: the
+/// classical f = K (1 + ψΔθ/F)); the green_ampt observer integrates it over the measured h(t).
+inline double green_ampt_rate(double K, double psi, double dtheta, double F, double pond = 0.0) {
+  return K * (1.0 + (psi + pond) * dtheta / F);
+}
 
 /// Effective suction head at the front (the capillary drive of Neuman 1976 / Morel-Seytoux &
 /// Khanji 1974), ψ = ∫₀^{h_c(0)} k_r dh, for the retention curve of the capillary potential

@@ -1,5 +1,5 @@
 // Observer "angle_of_repose": a pile of cohesionless sand on a rough floor comes to rest at the slope
-// angle θ_r = φ (REFERENCES.md §3: tan θ_r = μ_f for a Mohr-Coulomb material). At the end of the
+// angle θ_r = φ (docs/references.md §3: tan θ_r = μ_f for a Mohr-Coulomb material). At the end of the
 // run the free surface (top of the sand in columns one spacing wide) is fitted by a straight line
 // between 20 % and 80 % of the pile height on each flank (left: rising, right: falling):
 //   repose_angle_deg        mean of the two flank angles [deg];

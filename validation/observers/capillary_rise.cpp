@@ -1,4 +1,4 @@
-// Observer "capillary_rise": a dry fixed porous column standing in a pool (REFERENCES.md §5).
+// Observer "capillary_rise": a dry fixed porous column standing in a pool (docs/references.md §5).
 // The water table is the pool surface (top of the pool's water particles outside the column,
 // plus half a spacing), measured at the end. Over the last `average_time` seconds the row means
 // of S in the column's central band are averaged into S(z), z above the table, and compared with

@@ -1,10 +1,10 @@
 // Observer "column_collapse": a 2-D granular column of length L0 and height H0 (the first block)
-// collapses against the tank's x- wall on a rough floor (REFERENCES.md §3, Bui et al. 2008 geometry;
+// collapses against the tank's x- wall on a rough floor (docs/references.md §3, Bui et al. 2008 geometry;
 // Lube et al. 2005 and Lajeunesse et al. 2005 runout laws). At the end of the run:
 //   runout_normalised       (L∞ − L0)/L0, L∞ the 99th percentile of sand x from the back wall;
 //   back_wall_height_ratio  height of the deposit within two spacings of the back wall / H0;
 //   rest_energy_ratio       final kinetic energy / its peak (the deposit must be at rest);
-// with porous sand and water (wet_sand_collapse), also the water balance of REFERENCES.md §8:
+// with porous sand and water (wet_sand_collapse), also the water balance of docs/references.md §8:
 //   water_balance_rel_error, saturation_violation (porous_probe.hpp).
 // Series: the final surface profile against the initial column and the reference bands.
 #include <cmath>
@@ -79,7 +79,7 @@ class ColumnCollapseObserver : public Observer<D> {
                {"energy.png", "Kinetic energy of the sand", "t [s]", "E / E_peak", {{"energy_sim", "SPH", "line"}}}};
     if (water_) {
       r.series.push_back({"water_balance_sim", "t [s]", "relative change of free + absorbed water", time_, water_change()});
-      r.plots.push_back({"water_balance.png", "Water balance (REFERENCES.md §8: exact)", "t [s]",
+      r.plots.push_back({"water_balance.png", "Water balance (docs/references.md §8: exact)", "t [s]",
                          "(W(t) - W(0)) / W(0)", {{"water_balance_sim", "free + absorbed water", "line"}}});
     }
     return r;

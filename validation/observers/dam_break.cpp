@@ -1,5 +1,5 @@
 // Observer "dam_break": surge front and residual height of a collapsing water column against
-// Martin & Moyce 1952 (REFERENCES.md §2). The column of width a (the first block) stands against
+// Martin & Moyce 1952 (docs/references.md §2). The column of width a (the first block) stands against
 // the tank's x- wall on its floor. Every step records
 //   front  Z = x_front / a, with x_front the largest x (plus half a spacing) of water particles
 //          within 2 spacings of the floor having at least a third of the bulk neighbour count in

@@ -1,4 +1,4 @@
-// Observer "darcy_column": constant-head permeameter (REFERENCES.md §4) in the porous-flow model.
+// Observer "darcy_column": constant-head permeameter (docs/references.md §4) in the porous-flow model.
 // A saturated fixed porous column (bottom z_b, top z_t, length L) is fed by a pond on top and
 // drains into air below (seepage face). The outflow is all water below the column (water
 // particles and emission stores); its rate over [fit_start, end], per unit width, is the Darcy

@@ -1,4 +1,4 @@
-// Observer "green_ampt": ponded infiltration into a dry fixed porous bed (REFERENCES.md §4).
+// Observer "green_ampt": ponded infiltration into a dry fixed porous bed (docs/references.md §4).
 // F(t) is the absorbed water per unit area in the central band of the bed (m_p / ρ^f summed over
 // the band's columns, divided by the band width); the wetting front is the deepest row (band
 // mean) with S ≥ 1/2, measured down from the bed surface. Reference: Green-Ampt with
@@ -122,7 +122,7 @@ class GreenAmptObserver : public Observer<D> {
       const double t0 = time_[k - 1], dt = (time_[k] - t0) / kSubsteps;
       auto rate = [&](double t, double f) {
         const double h = pond_[k - 1] + (pond_[k] - pond_[k - 1]) * (t - t0) / (time_[k] - t0);
-        return K_ * (1.0 + (psi_ + h) * dtheta_ / f);
+        return analytic::green_ampt_rate(K_, psi_, dtheta_, f, h);
       };
       double f = F[k - 1];
       for (int m = 0; m < kSubsteps; ++m) {

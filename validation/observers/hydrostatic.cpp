@@ -1,4 +1,4 @@
-// Observer "hydrostatic": a tank of water at rest (REFERENCES.md §1).
+// Observer "hydrostatic": a tank of water at rest (docs/references.md §1).
 // After `settle_time`, over the last `average_time` seconds, averages the pressure of water
 // particles in horizontal bins one spacing high over the central half of the tank width, and
 // compares with p(z) = ρ0 g (H − z), excluding two spacings at the floor and at the surface.

@@ -1,4 +1,4 @@
-// Measurements shared by the porous-flow observers: the water balance (REFERENCES.md §8), the
+// Measurements shared by the porous-flow observers: the water balance (docs/references.md §8), the
 // saturation bounds, and horizontal-row averages over the central band of a porous column.
 #pragma once
 #include <algorithm>

@@ -2,7 +2,7 @@
 // reference solution. Metrics: `escaped`, the number of moving particles that end up outside the
 // tank (more than one spacing beyond a closed wall) or outside the domain; `water_balance_rel_error`,
 // the largest relative change over the run of all water, free (water particles) plus absorbed
-// (porous m_p and emission stores; REFERENCES.md §8: exact up to round-off); `free_water_fraction`,
+// (porous m_p and emission stores; docs/references.md §8: exact up to round-off); `free_water_fraction`,
 // the free water at the end over all water (informational: how much the sand drank).
 // Collapse of the sculpture (objective form of "standing where dry, collapsing where the water hits
 // it"): every sand particle is followed by its id from the start; it counts as wetted once its
