@@ -12,7 +12,8 @@ double bridge_volume(const Grains<D>& g, std::size_t i, std::size_t j, const Par
   return p.bridge_liquid_fraction * (g.water[i] + g.water[j]) / p.water_density;
 }
 
-/// The bridge force on i (zero unless both grains hold water and the pair is not over-wet).
+/// The bridge force on i (zero unless both grains hold water and the pair is not over-wet). Willett's
+/// R of two unequal spheres is their harmonic mean radius 2 a_i a_j/(a_i + a_j) = 2 r_eff.
 template <int D>
 Vec<D> bridge_force(const Grains<D>& g, std::size_t i, std::size_t j, const Params& p, const Vec<D>& n, double gap,
                     double r_eff) {
@@ -22,7 +23,7 @@ Vec<D> bridge_force(const Grains<D>& g, std::size_t i, std::size_t j, const Para
     return paper_bridge_force<D>(p.bridge_coefficient, p.wet_threshold, wi, wj, g.v[j] - g.v[i], g.x[j] - g.x[i]);
   }
   if (p.bridge == BridgeLaw::Willett && wi > 0.0 && wj > 0.0 && 0.5 * (wi + wj) <= p.wet_threshold)
-    return willett_force(r_eff, gap, bridge_volume(g, i, j, p), p.surface_tension, p.contact_angle) * n;
+    return willett_force(2.0 * r_eff, gap, bridge_volume(g, i, j, p), p.surface_tension, p.contact_angle) * n;
   return Vec<D>::Zero();
 }
 

@@ -32,18 +32,30 @@ void propagate_wetness(Grains<D>& g, const CellGrid<D>& grid, const Params& p, d
     if (receivers > 0)
       share[i] = p.propagation_rate * dt * (g.water[i] - p.wet_threshold * g.capacity(i, p)) / receivers;
   }
+  // Each grain sums what it gives and receives; the water moved carries its source's velocity, so
+  // momentum is conserved too (the mass a grain moves includes the water it holds).
   std::vector<double> change(g.size(), 0.0);
+  typename Grains<D>::VecArray momentum(g.size());
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t s = 0; s < n; ++s) {
     const auto i = static_cast<std::size_t>(s);
     double dw = 0.0;
+    Vec<D> dp = Vec<D>::Zero();
     grid.for_each_near(g.x[i], [&](std::uint32_t j) {
       if (over[i] == over[j] || !touching(g, i, j, p)) return;
-      dw += over[i] ? -share[i] : share[j];
+      const std::size_t from = over[i] ? i : j;
+      const double w = over[i] ? -share[i] : share[j];
+      dw += w;
+      dp += w * g.v[from];
     });
     change[i] = dw;
+    momentum[i] = g.mass(i) * g.v[i] + dp;
   }
-  for (std::size_t i = 0; i < g.size(); ++i) g.water[i] += change[i];
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    if (change[i] == 0.0) continue;
+    g.water[i] += change[i];
+    g.v[i] = momentum[i] / g.mass(i);
+  }
 }
 
 template void propagate_wetness<2>(Grains<2>&, const CellGrid<2>&, const Params&, double);
