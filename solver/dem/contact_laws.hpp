@@ -1,0 +1,108 @@
+// Contact and bridge laws between two grains (or a grain and a wall), after Rungjiratananon et al.
+// 2008 (seed 003) with the seed's bugs fixed openly:
+// - the spring acts along the contact normal (the seed directs it along the normal relative
+//   velocity, which flips sign as the grains separate);
+// - the tangential force is a Coulomb law regularised by a viscous slope and bounded by μ|F_n|
+//   (the seed's constant-magnitude form chatters and cannot stick);
+// - the bridge acts only between two grains that both hold water (the seed's form gives two dry
+//   grains the strongest bridge).
+// Every law returns the force on grain i; grain j evaluates the same law from its side, which gives
+// the exact negative (the pair terms are antisymmetric in their inputs), so momentum is conserved.
+#pragma once
+#include <algorithm>
+#include <cmath>
+
+#include "dem/grains.hpp"
+
+namespace sc::dem {
+
+/// One contact seen from grain i: n points from i to the other body.
+template <int D>
+struct Contact {
+  Vec<D> n;              ///< unit normal from i towards j
+  double overlap;        ///< a_i + a_j − |x_j − x_i| > 0 [m]
+  Vec<D> v_contact;      ///< velocity of i's contact point relative to j's [m/s]
+  Spin<D> omega_rel;     ///< ω_i − ω_j [rad/s]
+  double wet_factor;     ///< 1 + w_i + w_j
+  double friction;       ///< μ of the pair
+  double r_eff;          ///< a_i a_j/(a_i + a_j) (a_i for a wall) [m]
+  double lever;          ///< a_i: distance from i's centre to the contact point [m]
+};
+
+template <int D>
+struct ContactForce {
+  Vec<D> force;    ///< on i [N]
+  Spin<D> torque;  ///< on i about its centre [N m]
+};
+
+/// Normal force magnitude (positive = repulsive) of the linear spring-dashpot, spring along the
+/// contact normal and dashpot raised by wetness [Rungjiratananon 2008: DEM normal force]:
+///   F_n = k_s δ + k_d (1 + w_i + w_j) v_n,   v_n = (v_i − v_j)·n (approach speed).
+/// No tensile clamp: the contact ends when δ returns to zero, so restitution and contact time are
+/// those of the damped oscillator (tests/test_dem.cpp pins both).
+inline double normal_force(double k_s, double k_d, double wet_factor, double overlap, double v_n) {
+  return k_s * overlap + k_d * wet_factor * v_n;
+}
+
+/// Regularised Coulomb friction [Rungjiratananon 2008: DEM tangential force, fixed]:
+///   F_t = −min(γ_t (1 + w_i + w_j) |v_t|, μ |F_n|) v_t/|v_t|,
+/// the wetness factor raising the viscous slope as the paper raises its tangential coefficient.
+/// Below the bound the grain creeps at a speed ∝ 1/γ_t instead of sticking exactly.
+template <int D>
+inline Vec<D> tangential_force(const Vec<D>& v_t, double gamma_t, double wet_factor, double mu, double f_n) {
+  const double speed = v_t.norm();
+  if (speed <= 0.0) return Vec<D>::Zero();
+  const double magnitude = std::min(gamma_t * wet_factor * speed, mu * std::abs(f_n));
+  return (-magnitude / speed) * v_t;
+}
+
+/// Rolling resistance (ours, not in the paper: piles of round grains need it to stand near 30°):
+/// a torque opposing the relative spin, regularised like friction and bounded by μ_r R_eff |F_n|.
+template <int D>
+inline Spin<D> rolling_torque(const Spin<D>& omega_rel, double slope, double mu_r, double r_eff, double f_n) {
+  const double rate = omega_rel.norm();
+  if (rate <= 0.0 || mu_r <= 0.0) return Spin<D>::Zero();
+  const double magnitude = std::min(slope * rate, mu_r * r_eff * std::abs(f_n));
+  return (-magnitude / rate) * omega_rel;
+}
+
+/// Spring-dashpot, friction and rolling resistance of one contact, on grain i.
+template <int D>
+ContactForce<D> contact_force(const Contact<D>& c, const Params& p) {
+  const double v_n = c.v_contact.dot(c.n);
+  const double f_n = normal_force(p.stiffness, p.damping, c.wet_factor, c.overlap, v_n);
+  const Vec<D> v_t = c.v_contact - v_n * c.n;
+  const Vec<D> f_t = tangential_force<D>(v_t, p.tangential_damping, c.wet_factor, c.friction, f_n);
+  ContactForce<D> out{-f_n * c.n + f_t, Spin<D>::Zero()};
+  if (p.rotation)
+    out.torque = moment<D>(c.lever * c.n, f_t) +
+                 rolling_torque<D>(c.omega_rel, p.rolling_damping, p.rolling_friction, c.r_eff, f_n);
+  return out;
+}
+
+/// The paper's liquid bridge, on grain i [Rungjiratananon 2008: liquid bridge, fixed]:
+///   F_i = k_bridge max(0, w_f − (w_i + w_j)/2) (v_j − v_i)   while (v_j − v_i)·(x_j − x_i) > 0,
+/// zero unless both grains hold water. A velocity-proportional glue: it resists separation only.
+template <int D>
+inline Vec<D> paper_bridge_force(double k_bridge, double w_f, double w_i, double w_j, const Vec<D>& v_ji,
+                                 const Vec<D>& x_ji) {
+  if (!(w_i > 0.0 && w_j > 0.0) || v_ji.dot(x_ji) <= 0.0) return Vec<D>::Zero();
+  return (k_bridge * std::max(0.0, w_f - 0.5 * (w_i + w_j))) * v_ji;
+}
+
+/// Rupture distance of a bridge of volume V (Lian 1993): S_c = (1 + θ/2) V^{1/3}.
+inline double rupture_distance(double volume, double theta) { return (1.0 + 0.5 * theta) * std::cbrt(volume); }
+
+/// Capillary force magnitude (attractive) of a pendular bridge of volume V between spheres of
+/// effective radius R at gap S [Willett 2000: eq. 12-13]:
+///   F = 2πRγ cos θ / (1 + 2.1 s⁺ + 10 s⁺²),  s⁺ = (S/2)√(R/V);  F = 2πRγ cos θ in contact (S <= 0),
+/// zero beyond the rupture distance.
+inline double willett_force(double r_eff, double gap, double volume, double gamma, double theta) {
+  const double f0 = 2.0 * pi * r_eff * gamma * std::cos(theta);
+  if (gap <= 0.0) return f0;
+  if (gap > rupture_distance(volume, theta)) return 0.0;
+  const double s = 0.5 * gap * std::sqrt(r_eff / volume);
+  return f0 / (1.0 + 2.1 * s + 10.0 * s * s);
+}
+
+}  // namespace sc::dem

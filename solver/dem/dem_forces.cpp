@@ -1,0 +1,143 @@
+#include "dem/dem_forces.hpp"
+
+#include <algorithm>
+
+namespace sc::dem {
+
+namespace {
+
+/// Volume of the bridge between i and j for Willett's law: a share of the water both hold.
+template <int D>
+double bridge_volume(const Grains<D>& g, std::size_t i, std::size_t j, const Params& p) {
+  return p.bridge_liquid_fraction * (g.water[i] + g.water[j]) / p.water_density;
+}
+
+/// The bridge force on i (zero unless both grains hold water and the pair is not over-wet). Willett's
+/// R of two unequal spheres is their harmonic mean radius 2 a_i a_j/(a_i + a_j) = 2 r_eff.
+template <int D>
+Vec<D> bridge_force(const Grains<D>& g, std::size_t i, std::size_t j, const Params& p, const Vec<D>& n, double gap,
+                    double r_eff) {
+  const double wi = g.saturation(i, p), wj = g.saturation(j, p);
+  if (p.bridge == BridgeLaw::Paper) {
+    if (gap > p.bridge_range) return Vec<D>::Zero();
+    return paper_bridge_force<D>(p.bridge_coefficient, p.wet_threshold, wi, wj, g.v[j] - g.v[i], g.x[j] - g.x[i]);
+  }
+  if (p.bridge == BridgeLaw::Willett && wi > 0.0 && wj > 0.0 && 0.5 * (wi + wj) <= p.wet_threshold)
+    return willett_force(2.0 * r_eff, gap, bridge_volume(g, i, j, p), p.surface_tension, p.contact_angle) * n;
+  return Vec<D>::Zero();
+}
+
+}  // namespace
+
+template <int D>
+double interaction_range(const Grains<D>& g, const Params& p) {
+  double r = 0.0, w = 0.0;
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    r = std::max(r, g.radius[i]);
+    w = std::max(w, g.water[i]);
+  }
+  double reach = 0.0;
+  if (p.bridge == BridgeLaw::Paper) reach = p.bridge_range;
+  if (p.bridge == BridgeLaw::Willett)
+    reach = rupture_distance(p.bridge_liquid_fraction * 2.0 * w / p.water_density, p.contact_angle);
+  return 2.0 * r + reach;
+}
+
+template <int D>
+void bin_grains(const Grains<D>& g, const Params& p, CellGrid<D>& grid) {
+  grid.build(std::span<const Vec<D>>(g.x.data(), g.x.size()), interaction_range(g, p));
+}
+
+template <int D>
+ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, const Params& p) {
+  ContactForce<D> out{Vec<D>::Zero(), Spin<D>::Zero()};
+  const Vec<D> d = g.x[j] - g.x[i];
+  const double dist = d.norm();
+  if (dist <= 0.0) return out;
+  const Vec<D> n = d / dist;
+  const double ai = g.wet_radius(i, p), aj = g.wet_radius(j, p);
+  const double overlap = ai + aj - dist;
+  const double r_eff = ai * aj / (ai + aj);
+  if (p.bridge != BridgeLaw::None) out.force = bridge_force(g, i, j, p, n, -overlap, r_eff);
+  if (overlap <= 0.0) return out;
+  // Contact-point velocity of i relative to j; written (v_i − v_j) + (a_i ω_i + a_j ω_j) × n so that
+  // j's evaluation is the exact negative.
+  const Vec<D> vc = (g.v[i] - g.v[j]) + spin_cross<D>(ai * g.omega[i] + aj * g.omega[j], n);
+  const Contact<D> c{n, overlap, vc, g.omega[i] - g.omega[j], 1.0 + g.saturation(i, p) + g.saturation(j, p),
+                     p.friction, r_eff, ai};
+  const ContactForce<D> f = contact_force(c, p);
+  out.force += f.force;
+  out.torque = f.torque;
+  return out;
+}
+
+template <int D>
+ContactForce<D> wall_force(const Grains<D>& g, std::size_t i, const Plane<D>& wall, const Params& p) {
+  const double ai = g.wet_radius(i, p);
+  const double overlap = ai - (g.x[i] - wall.point).dot(wall.normal);
+  if (overlap <= 0.0) return {Vec<D>::Zero(), Spin<D>::Zero()};
+  const Vec<D> n = -wall.normal;
+  const Vec<D> vc = g.v[i] + spin_cross<D>(ai * g.omega[i], n);
+  const Contact<D> c{n, overlap, vc, g.omega[i], 1.0 + g.saturation(i, p), p.wall_friction, ai, ai};
+  return contact_force(c, p);
+}
+
+template <int D>
+void grain_forces(Grains<D>& g, const CellGrid<D>& grid, const Params& p, const Vec<D>& gravity,
+                  std::span<const Plane<D>> walls) {
+  const auto n = static_cast<std::ptrdiff_t>(g.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    Vec<D> f = g.mass(i) * gravity;
+    Spin<D> t = Spin<D>::Zero();
+    grid.for_each_near(g.x[i], [&](std::uint32_t j) {
+      if (j == i) return;
+      const ContactForce<D> c = pair_force(g, i, j, p);
+      f += c.force;
+      t += c.torque;
+    });
+    for (const auto& w : walls) {
+      const ContactForce<D> c = wall_force(g, i, w, p);
+      f += c.force;
+      t += c.torque;
+    }
+    g.force[i] = f;
+    g.torque[i] = t;
+  }
+}
+
+template <int D>
+void integrate(Grains<D>& g, const Params& p, double dt) {
+  const auto n = static_cast<std::ptrdiff_t>(g.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    g.v[i] += (dt / g.mass(i)) * g.force[i];
+    if (p.rotation) g.omega[i] += (dt / g.inertia(i)) * g.torque[i];
+    g.x[i] += dt * g.v[i];
+  }
+}
+
+template <int D>
+void step(Grains<D>& g, CellGrid<D>& grid, const Params& p, const Vec<D>& gravity, std::span<const Plane<D>> walls,
+          double dt) {
+  bin_grains(g, p, grid);
+  grain_forces(g, grid, p, gravity, walls);
+  integrate(g, p, dt);
+}
+
+#define SC_DEM_FORCES(D)                                                                                       \
+  template double interaction_range<D>(const Grains<D>&, const Params&);                                      \
+  template void bin_grains<D>(const Grains<D>&, const Params&, CellGrid<D>&);                                \
+  template ContactForce<D> pair_force<D>(const Grains<D>&, std::size_t, std::size_t, const Params&);          \
+  template ContactForce<D> wall_force<D>(const Grains<D>&, std::size_t, const Plane<D>&, const Params&);      \
+  template void grain_forces<D>(Grains<D>&, const CellGrid<D>&, const Params&, const Vec<D>&,                \
+                                std::span<const Plane<D>>);                                                  \
+  template void integrate<D>(Grains<D>&, const Params&, double);                                              \
+  template void step<D>(Grains<D>&, CellGrid<D>&, const Params&, const Vec<D>&, std::span<const Plane<D>>, double);
+SC_DEM_FORCES(2)
+SC_DEM_FORCES(3)
+#undef SC_DEM_FORCES
+
+}  // namespace sc::dem

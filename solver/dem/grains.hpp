@@ -1,0 +1,88 @@
+// DEM grains: discs (D = 2) and spheres (D = 3) as a structure of arrays, with the water each one
+// holds (Rungjiratananon et al. 2008, seed 003). A grain moves its dry mass plus the water it holds,
+// so absorbing a water particle conserves momentum (solver/dem/water_coupling.hpp).
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/types.hpp"
+#include "dem/dem_params.hpp"
+
+namespace sc::dem {
+
+/// Angular velocity or torque: a scalar about z in 2-D, a vector in 3-D.
+template <int D>
+using Spin = Eigen::Matrix<double, D == 2 ? 1 : 3, 1>;
+
+/// ω × r: the velocity of a point at offset r of a body spinning at ω.
+template <int D>
+inline Vec<D> spin_cross(const Spin<D>& w, const Vec<D>& r) {
+  if constexpr (D == 2) return Vec<D>(-w[0] * r[1], w[0] * r[0]);
+  else return w.cross(r);
+}
+/// r × F: the torque of force F applied at offset r.
+template <int D>
+inline Spin<D> moment(const Vec<D>& r, const Vec<D>& f) {
+  if constexpr (D == 2) return Spin<D>(r[0] * f[1] - r[1] * f[0]);
+  else return r.cross(f);
+}
+
+/// A fixed contact plane (a tank wall): a point on it and its unit normal into the domain.
+template <int D>
+struct Plane {
+  Vec<D> point;
+  Vec<D> normal;
+};
+
+template <int D>
+struct Grains {
+  using VecArray = std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>>;
+  using SpinArray = std::vector<Spin<D>, Eigen::aligned_allocator<Spin<D>>>;
+  VecArray x, v, force;           ///< position [m], velocity [m/s], force of the step [N]
+  SpinArray omega, torque;        ///< angular velocity [rad/s], torque of the step [N m]
+  std::vector<double> radius;     ///< dry radius R [m]
+  std::vector<double> dry_mass;   ///< [kg] (2-D: per metre of depth)
+  std::vector<double> water;      ///< water held [kg]
+
+  std::size_t size() const { return x.size(); }
+  /// Appends a grain at rest; its dry mass is density times its volume.
+  std::size_t add(const Vec<D>& at, double r, double density) {
+    x.push_back(at); v.push_back(Vec<D>::Zero()); force.push_back(Vec<D>::Zero());
+    omega.push_back(Spin<D>::Zero()); torque.push_back(Spin<D>::Zero());
+    radius.push_back(r); dry_mass.push_back(density * volume_of(r)); water.push_back(0.0);
+    return x.size() - 1;
+  }
+  static double volume_of(double r) { return D == 3 ? 4.0 / 3.0 * pi * r * r * r : pi * r * r; }
+  double volume(std::size_t i) const { return volume_of(radius[i]); }
+  double mass(std::size_t i) const { return dry_mass[i] + water[i]; }
+  /// Moment of inertia of a uniform sphere (2/5 m R²) or disc (1/2 m R²).
+  double inertia(std::size_t i) const { return (D == 3 ? 0.4 : 0.5) * mass(i) * radius[i] * radius[i]; }
+  /// Water held at saturation 1 [kg].
+  double capacity(std::size_t i, const Params& p) const { return p.capacity_fraction * p.water_density * volume(i); }
+  /// The paper's wetness w: water held over capacity (0 dry, w_f the over-wet threshold).
+  double saturation(std::size_t i, const Params& p) const { return water[i] / capacity(i, p); }
+  /// Radius shrinking with wetness, r = R − k_r w, bounded below by a fraction of R
+  /// [Rungjiratananon 2008: wet radius].
+  double wet_radius(std::size_t i, const Params& p) const {
+    return std::max(radius[i] - p.radius_shrink * saturation(i, p), p.min_radius_fraction * radius[i]);
+  }
+};
+
+/// Stable step of the explicit contact integration: a tenth of √(m/k) of the lightest grain,
+/// i.e. about 1/30 of the contact's natural period π√(m/k).
+template <int D>
+double stable_step(const Grains<D>& g, const Params& p) {
+  double m = INFINITY;
+  for (std::size_t i = 0; i < g.size(); ++i) m = std::min(m, g.mass(i));
+  return 0.1 * std::sqrt(m / p.stiffness);
+}
+
+/// Dashpot k_d giving restitution e for effective mass m_eff and spring k (linear spring-dashpot:
+/// e = exp(−π ζ/√(1−ζ²)), ζ = k_d/(2√(k m_eff)), inverted).
+inline double damping_for_restitution(double e, double k, double m_eff) {
+  const double l = std::log(e);
+  return -2.0 * l * std::sqrt(k * m_eff / (pi * pi + l * l));
+}
+
+}  // namespace sc::dem
