@@ -61,8 +61,7 @@ void add_particle(ParticleSet<D>& ps, const Vec<D>& x, Phase phase, double mass,
 /// Wall layers of the tank: lattice points outside [min, max] within `layers` spacings of a side
 /// that is not open. A point is rough if any wall side it lies beyond is no-slip.
 template <int D>
-void add_tank(ParticleSet<D>& ps, const TankSpec& tank, double dx, double h, double mass, double rho0) {
-  const int layers = tank_wall_layers(h, dx);
+void add_tank(ParticleSet<D>& ps, const TankSpec& tank, double dx, int layers, double h, double mass, double rho0) {
   Vec<D> lo = to_vec<D>(tank.min), hi = to_vec<D>(tank.max);
   Vec<D> ext_lo = lo, ext_hi = hi;
   for (int d = 0; d < D; ++d) {
@@ -86,11 +85,9 @@ void add_tank(ParticleSet<D>& ps, const TankSpec& tank, double dx, double h, dou
 template <int D>
 ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
   ParticleSet<D> ps;
-  const double h = spec.support_ratio * dx;
-  const double rho0 = spec.water.rest_density;
-  const double mass = lattice_mass<D>(rho0, dx, h, spec.water.density_kernel);
-  const double sand_rho0 = spec.sand.rest_density;
-  const double sand_mass = lattice_mass<D>(sand_rho0, dx, h, spec.water.density_kernel);
+  const Resolution res = resolve(spec, dx);
+  const double h = res.h, mass = res.water_mass, sand_mass = res.sand_mass;
+  const double rho0 = spec.water.rest_density, sand_rho0 = spec.sand.rest_density;
   for (const BlockSpec& block : spec.blocks) {
     const bool sand = block.fill == BlockFill::Sand;
     for (const Vec<D>& p : lattice_points<D>(to_vec<D>(block.min), to_vec<D>(block.max), dx))
@@ -103,7 +100,7 @@ ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
         add_particle(ps, p, m.phase, sand ? sand_mass : mass, h, sand ? sand_rho0 : rho0, false);
     }
   if (spec.porous) init_porous(ps, *spec.porous, dx);
-  if (spec.tank) add_tank(ps, *spec.tank, dx, h, mass, rho0);
+  if (spec.tank) add_tank(ps, *spec.tank, dx, res.wall_layers, h, mass, rho0);
   return ps;
 }
 
@@ -129,6 +126,20 @@ double tank_wall_count(const TankSpec& tank, double dx, double h) {
 }
 
 }  // namespace
+
+Resolution resolve(const CaseSpec& spec, double dx) {
+  Resolution r;
+  r.dx = dx;
+  r.h = spec.support_ratio * dx;
+  const auto mass = [&](double rho0) {
+    return spec.dimension == 2 ? lattice_mass<2>(rho0, dx, r.h, spec.water.density_kernel)
+                               : lattice_mass<3>(rho0, dx, r.h, spec.water.density_kernel);
+  };
+  r.water_mass = mass(spec.water.rest_density);
+  r.sand_mass = spec.has_sand ? mass(spec.sand.rest_density) : 0.0;
+  r.wall_layers = tank_wall_layers(r.h, dx);
+  return r;
+}
 
 double estimate_particles(const CaseSpec& spec, double dx) {
   double n = 0.0;

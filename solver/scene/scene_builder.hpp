@@ -22,6 +22,19 @@ std::vector<Vec<D>, Eigen::aligned_allocator<Vec<D>>> lattice_points(const Vec<D
 /// particle at the wall (ceil(h / dx)).
 inline int tank_wall_layers(double h, double dx) { return static_cast<int>(std::ceil(h / dx)); }
 
+/// The values a case fixes at one particle spacing, computed in one place (resolve) for the scene
+/// builder, the SPH parameters and the observers.
+struct Resolution {
+  double dx = 0.0;          ///< particle spacing [m]
+  double h = 0.0;           ///< kernel support, support_ratio * dx [m]
+  double water_mass = 0.0;  ///< lattice_mass of water at dx [kg]
+  double sand_mass = 0.0;   ///< lattice_mass of sand at dx [kg] (0 without a "sand" section)
+  int wall_layers = 0;      ///< tank_wall_layers(h, dx)
+};
+
+/// The Resolution of `spec` at spacing dx (in the case's dimension).
+Resolution resolve(const CaseSpec& spec, double dx);
+
 /// How many particles build_scene would make at spacing dx, found without making them: blocks and
 /// tank walls counted from their lattices (as built), each mesh bounded by the lattice of the box it must fit
 /// in (the tank, else the domain). A double, so that a mistyped spacing cannot overflow it.

@@ -27,6 +27,7 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
   p.eos = spec.eos;
   p.water = spec.water;
   p.sand = spec.sand;
+  const Resolution res = resolve(spec, spacing);
   const double volume = std::pow(spacing, spec.dimension);
   p.water.reference_mass = spec.water.rest_density * volume;
   if (spec.artificial_viscosity > 0.0)  // ν = α h c / (2(D + 2)) (Monaghan 1992)
@@ -36,26 +37,21 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
   p.domain_min = spec.domain_min;
   p.domain_max = spec.domain_max;
   p.tank = spec.tank;
-  p.tank_wall_thickness = tank_wall_layers(spec.support_ratio * spacing, spacing) * spacing;
+  p.tank_wall_thickness = res.wall_layers * spacing;
   if (spec.porous) {
     p.porous = *spec.porous;
-    const double h = spec.support_ratio * spacing;
-    const double rho0 = spec.water.rest_density;
     if (spec.dimension == 2)
-      derive_porous<2>(*p.porous, spacing, h, lattice_mass<2>(rho0, spacing, h, spec.water.density_kernel),
-                       spec.water.density_kernel);
+      derive_porous<2>(*p.porous, spacing, res.h, res.water_mass, spec.water.density_kernel);
     else
-      derive_porous<3>(*p.porous, spacing, h, lattice_mass<3>(rho0, spacing, h, spec.water.density_kernel),
-                       spec.water.density_kernel);
+      derive_porous<3>(*p.porous, spacing, res.h, res.water_mass, spec.water.density_kernel);
   }
   if (spec.adaptive) {
     p.adaptive = *spec.adaptive;
-    const double h = spec.support_ratio * spacing;
-    const double rho0 = spec.water.rest_density;
+    const double finest_volume = res.water_mass / spec.water.rest_density;
     if (spec.dimension == 2)
-      derive_adaptivity<2>(*p.adaptive, spacing, lattice_mass<2>(rho0, spacing, h, spec.water.density_kernel) / rho0);
+      derive_adaptivity<2>(*p.adaptive, spacing, finest_volume);
     else
-      derive_adaptivity<3>(*p.adaptive, spacing, lattice_mass<3>(rho0, spacing, h, spec.water.density_kernel) / rho0);
+      derive_adaptivity<3>(*p.adaptive, spacing, finest_volume);
   }
   return p;
 }

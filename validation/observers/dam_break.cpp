@@ -59,7 +59,7 @@ class DamBreakObserver : public Observer<D> {
     y0_ = ctx.spec.tank->min[D - 1];
     a_ = ctx.spec.blocks.front().max[0] - ctx.spec.blocks.front().min[0];
     time_scale_ = std::sqrt(std::abs(ctx.spec.gravity[D - 1]) / a_);
-    min_neighbours_ = bulk_neighbour_count<D>(dx_, ctx.spec.support_ratio * dx_) / 3;
+    min_neighbours_ = bulk_neighbour_count<D>(dx_, resolve(ctx.spec, dx_).h) / 3;
   }
 
   void sample(const Method<D>& run) override {
