@@ -10,7 +10,7 @@
 
 #include "baseline.hpp"
 #include "compare.hpp"
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "run_record.hpp"
 
 using namespace sc;

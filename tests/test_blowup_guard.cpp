@@ -5,7 +5,7 @@
 #include <cstring>
 #include <utility>
 
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "scene/scene_builder.hpp"
 #include "simulator/simulator.hpp"
 

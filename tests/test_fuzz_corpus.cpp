@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "geometry/triangle_mesh.hpp"
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 
 namespace fs = std::filesystem;
 using namespace sc;

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "scene/scene_builder.hpp"
 
 using namespace sc;

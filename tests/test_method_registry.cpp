@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "method/registry.hpp"
 #include "simulator/sph_probe.hpp"
 #include "support/process.hpp"

@@ -2,7 +2,7 @@
 // the conservation account of its split/merge passes and, when the validation block asks for a
 // "uniform_twin", the comparison with the same case run at the finest level without adaptivity.
 #pragma once
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "runner.hpp"
 
 namespace sc {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "io/json_reader.hpp"
 #include "runner.hpp"
 

@@ -1,7 +1,7 @@
 // The "dry twin" of a wet-sand case: the same case run without its water, so that what the water
 // did (weakening the sand, eqs 32 and the wet cohesion) is measured against the dry run.
 #pragma once
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "runner.hpp"
 
 namespace sc {

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "method/method.hpp"
 
 namespace sc {

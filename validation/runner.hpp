@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "scene/scene_builder.hpp"
 #include "observer.hpp"
 

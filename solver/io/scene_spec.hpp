@@ -1,5 +1,5 @@
 // The scene of a case as plain data: its lattice blocks and its box tank, parsed into enums at the
-// boundary (io/case_file.cpp). Scene building (scene/) and wall collision (boundary/) read only
+// boundary (case/case_file.cpp). Scene building (scene/) and wall collision (boundary/) read only
 // this, not the physics parameters of the whole case.
 #pragma once
 #include <array>

@@ -1,6 +1,6 @@
 // Particles filling the meshes of a case (the "meshes" list, cases/README.md).
 #pragma once
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 
 namespace sc {
 

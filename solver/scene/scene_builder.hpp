@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "core/particle_set.hpp"
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "sph/kernels.hpp"
 
 namespace sc {

@@ -8,7 +8,7 @@
 #include "core/errors.hpp"
 #include "core/particle_set.hpp"
 #include "core/stage_timers.hpp"
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "neighbours/neighbour_grid.hpp"
 #include "porous/porous_flow.hpp"
 #include "sand/clusters.hpp"

@@ -8,7 +8,7 @@
 
 #include "adaptive/adaptivity.hpp"
 #include "core/particle_set.hpp"
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "method/method.hpp"
 #include "neighbours/neighbour_grid.hpp"
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <fstream>
 
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::string path = "/tmp/sandcastle_fuzz_case_" + std::to_string(::getpid()) + ".json";

@@ -1,4 +1,4 @@
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 
 #include <algorithm>
 #include <cmath>
