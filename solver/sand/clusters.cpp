@@ -98,10 +98,10 @@ void move_clusters(ParticleSet<D>& ps, const Clusters& clusters, const std::vect
                    double dt, double damping) {
   // The turn of every cluster first, then every member on its own (ps.cluster names its cluster),
   // so the members of one large cluster are shared among the threads.
-  std::vector<Mat<D>, Eigen::aligned_allocator<Mat<D>>> turns(clusters.size());
+  std::vector<Turn<D>, Eigen::aligned_allocator<Turn<D>>> turns(clusters.size());
   const auto nc = static_cast<std::int64_t>(clusters.size());
 #pragma omp parallel for schedule(static)
-  for (std::int64_t c = 0; c < nc; ++c) turns[c] = rotation<D>(dt * motions[c].omega);
+  for (std::int64_t c = 0; c < nc; ++c) turns[c] = free_turn<D>(motions[c].inertia, motions[c].omega, dt);
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
@@ -109,8 +109,8 @@ void move_clusters(ParticleSet<D>& ps, const Clusters& clusters, const std::vect
     const auto c = static_cast<std::size_t>(ps.cluster[i] - 1);
     const ClusterMotion<D>& motion = motions[c];
     const Vec<D> centre = motion.centre + dt * motion.velocity;
-    ps.x[i] = rigid_position<D>(motion, turns[c], ps.x[i], dt);
-    ps.v[i] = damping * (motion.velocity + spin_velocity<D>(motion.omega, ps.x[i] - centre));
+    ps.x[i] = rigid_position<D>(motion, turns[c].rotation, ps.x[i], dt);
+    ps.v[i] = damping * (motion.velocity + spin_velocity<D>(turns[c].omega, ps.x[i] - centre));
   }
 }
 

@@ -24,9 +24,10 @@ Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb);
 template <int D>
 std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt);
 
-/// Moves the members of every cluster rigidly by one step: x ← r_cm + Δt v_cm + R(ωΔt)(x − r_cm),
-/// then v ← damping (v_cm + ω × (x − r_cm_new)), eq 18 in its corrected form. The members are
-/// found by ps.cluster (as find_clusters writes it).
+/// Moves the members of every cluster rigidly by one step: x ← r_cm + Δt v_cm + R (x − r_cm), then
+/// v ← damping (v_cm + ω' × (x − r_cm_new)), eq 18 in its corrected form, with R and ω' the
+/// torque-free turn of the cluster (free_turn: L = Iω is carried through the step, so in 3-D ω
+/// precesses and L stays). The members are found by ps.cluster (as find_clusters writes it).
 template <int D>
 void move_clusters(ParticleSet<D>& ps, const Clusters& clusters, const std::vector<ClusterMotion<D>>& motions,
                    double dt, double damping);

@@ -161,11 +161,12 @@ MotionSums<D> motion_sums(std::span<const std::size_t> members, std::span<const 
 /// (corrected form of EQUATIONS.md 15-18), from its mass M, centre and motion_sums:
 ///   P = Σ m_j v_j + F_cluster Δt,  L = Σ m_j r'_j × v_j + τ_cluster Δt,  v_cm = P/M,  ω = I⁻¹ L,
 /// from the velocities and forces at the start of the step. Errata: eqs 15-16 drop the gyroscopic
-/// term ω × Iω and the time dependence of I; updating L (not ω) keeps them (angular momentum is
-/// conserved to round-off when τ = 0). Eq 18 divides the cluster force by the particle mass m_i
+/// term ω × Iω and the time dependence of I; updating L (not ω) here, and turning the body at that L
+/// with free_turn (which gives ω at the end of the step), keeps them (angular momentum is conserved
+/// to round-off when τ = 0). Eq 18 divides the cluster force by the particle mass m_i
 /// (N_cluster times too large; it must be the cluster mass M) and adds increments to each particle's
 /// old velocity, which never makes a new cluster rigid; here every member gets v_cm + ω × r'
-/// (apply_rigid_velocity). The cross-product order (α Δt) × r' of the thesis is right.
+/// (move_clusters). The cross-product order (α Δt) × r' of the thesis is right.
 /// `spins`: false for one particle, whose I and L are round-off about its own centre.
 template <int D>
 ClusterMotion<D> motion_from_sums(double mass, const Vec<D>& centre, const MotionSums<D>& s, double dt, bool spins) {
@@ -204,6 +205,56 @@ Mat<D> rotation(const AngVec<D>& angle) {
     const double theta = angle.norm();
     if (theta == 0.0) return Mat<3>::Identity();
     return Eigen::AngleAxisd(theta, angle / theta).toRotationMatrix();
+  }
+}
+
+/// The turn of a rigid body over one step and its angular velocity at the end of the step.
+template <int D>
+struct Turn {
+  Mat<D> rotation = Mat<D>::Identity();  ///< R: an offset r' from the centre becomes R r'
+  AngVec<D> omega = AngVec<D>::Zero();   ///< ω at the end of the step: I(t + Δt)⁻¹ L
+};
+
+/// Torque-free turn over Δt of a rigid body of inertia I about its centre [thesis eq. 17] that spins
+/// at ω at the start of the step; its angular momentum L = Iω is conserved (rigid clusters after
+/// Zhu-Bridson 2005, whose rigid groups keep the momenta of their members).
+/// In 2-D ω is a scalar about the normal of the plane and does not change: R = R(ωΔt).
+/// In 3-D [McLachlan 1993: splitting of the free rigid body], in the symmetric form of
+/// [Dullweber-Leimkuhler-McLachlan 1997: symplectic splitting]: the kinetic energy
+/// T = Σ_k (L·e_k)²/(2 I_k) over the principal axes e_k (moments I_k) is split into its three terms.
+/// The flow of one term is exact: the body turns about e_k by the angle t (L·e_k)/I_k (e_k and L
+/// stay, the other axes turn). The step composes them symmetrically, T_a(Δt/2) T_b(Δt/2) T_c(Δt)
+/// T_b(Δt/2) T_a(Δt/2), with a the largest moment and c the smallest. Every stage is a rotation at
+/// fixed L, so L (the vector) is conserved to round-off and ω = I(t)⁻¹L precesses by Euler's
+/// equations; the composition is symplectic, time-reversible and of second order, so the kinetic
+/// energy ½ L·ω is conserved to O((|ω|Δt)²) without drift. Rotating by ωΔt and keeping ω (the
+/// form that drops the gyroscopic term ω × Iω) keeps ω but turns L (tests/test_rigid_motion.cpp).
+/// A body whose smallest moment is below rel_tol times the largest lies on a line (solve_inertia
+/// gives it no spin about the line): it is a symmetric top with ω ⊥ line, ω stays, and R(ωΔt) is exact.
+template <int D>
+Turn<D> free_turn(const AngMat<D>& inertia, const AngVec<D>& omega, double dt, double rel_tol = 1e-10) {
+  if constexpr (D == 2) {
+    return {rotation<2>(dt * omega), omega};
+  } else {
+    const Eigen::SelfAdjointEigenSolver<Mat<3>> es(inertia);
+    const Vec<3>& moments = es.eigenvalues();  // increasing
+    const double largest = moments.cwiseAbs().maxCoeff();
+    if (!(moments[0] > rel_tol * largest)) return {rotation<3>(dt * omega), omega};
+    const Vec<3> L = inertia * omega;
+    Mat<3> axes = es.eigenvectors();  // columns: the principal axes, turned with the body
+    Turn<3> turn;
+    auto stage = [&](int k, double h) {
+      const Mat<3> S = rotation<3>(Vec<3>((h * L.dot(axes.col(k)) / moments[k]) * axes.col(k)));
+      axes = S * axes;
+      turn.rotation = S * turn.rotation;
+    };
+    stage(2, 0.5 * dt);
+    stage(1, 0.5 * dt);
+    stage(0, dt);
+    stage(1, 0.5 * dt);
+    stage(2, 0.5 * dt);
+    for (int k = 0; k < 3; ++k) turn.omega += (L.dot(axes.col(k)) / moments[k]) * axes.col(k);
+    return turn;
   }
 }
 
