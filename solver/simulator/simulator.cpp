@@ -10,6 +10,7 @@
 #include "porous/porous_setup.hpp"
 #include "sand/rigid_wall_contact.hpp"
 #include "sand/sand_forces.hpp"
+#include "simulator/symplectic_euler.hpp"
 #include "scene/scene_builder.hpp"
 #include "sph/density.hpp"
 #include "water/water_forces.hpp"
@@ -188,8 +189,7 @@ void Simulator<D>::integrate(double dt) {
     if (!ps_.moves(i)) continue;
     if (tank_walls_) x_start_[i] = ps_.x[i];
     if (has_sand_ && ps_.cluster[i] != 0) continue;
-    ps_.v[i] = damping * (ps_.v[i] + dt * acceleration<D>(ps_.force[i], ps_.m[i]));  // symplectic Euler
-    ps_.x[i] += dt * ps_.v[i];
+    symplectic_euler_step<D>(ps_.x[i], ps_.v[i], ps_.force[i], ps_.m[i], dt, damping);
   }
   if (params_.adaptive) decay_density_offsets(ps_, dt, params_.adaptive->blend_time);
   if (has_sand_) move_clusters(ps_, clusters_, motions, dt, damping);

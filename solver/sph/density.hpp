@@ -1,27 +1,11 @@
-// SPH interpolation and density summation.
+// SPH density summation (the solver's interpolation, eq 1 with A = ρ).
 #pragma once
-#include <span>
 
 #include "core/particle_set.hpp"
 #include "neighbours/neighbour_grid.hpp"
 #include "sph/kernels.hpp"
 
 namespace sc {
-
-/// SPH interpolation [thesis eq. 1] (Monaghan 1992; Müller 2003):
-/// A(x_i) = Σ_j V_j A_j W(|x_ij|, h_j), V_j = m_j/ρ_j, including j = i, with the neighbour's own
-/// support h_j (scatter form, Lenaerts 2008 eq 1). Erratum: the thesis text calls ρ_j "the density
-/// of particle i"; it is the density of particle j.
-template <int D>
-double interpolate(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::span<const double> field,
-                   std::size_t i) {
-  double sum = 0.0;
-  for (const auto j : nb.of(i)) {
-    const double r = (ps.x[i] - ps.x[j]).norm();
-    sum += ps.volume(j) * field[j] * kernel::poly6<D>(r, ps.h[j]);
-  }
-  return sum;
-}
 
 /// Mass neighbour j brings into particle i's density sum (eq 6 across phases, ours [I]). Summed
 /// by mass, another phase would read as a density jump, so two pairs count by volume instead, at
@@ -45,7 +29,10 @@ double neighbour_mass(const ParticleSet<D>& ps, std::size_t i, std::size_t j, do
 
 /// Density by summation [thesis eq. 6] (Müller 2003): ρ_i = Σ_j m_j W(|x_ij|, h_i), the
 /// gather form with the particle's own support, self term included (W: see DensityKernel; m_j:
-/// see neighbour_mass). Written for every moving particle; boundary particles keep the density of
+/// see neighbour_mass). This is where the solver interpolates: SPH interpolation [thesis eq. 1]
+/// (Monaghan 1992) A(x_i) = Σ_j V_j A_j W(|x_ij|, h), V_j = m_j/ρ_j, with A = ρ, so V_j A_j = m_j
+/// (the thesis text calls ρ_j "the density of particle i"; it is that of particle j); eqs 4 and 5
+/// are its gradient and Laplacian. Written for every moving particle; boundary particles keep the density of
 /// their wall model.
 template <int D>
 double density_sum(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i, kernel::DensityKernel k,

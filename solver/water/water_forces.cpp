@@ -6,6 +6,26 @@
 
 namespace sc {
 
+namespace {
+
+/// The reaction of the water's surface tension on a (moving) sand particle i: the pair forces of its water
+/// neighbours, each the exact negative of the force add_water_forces gives that neighbour, so
+/// water and sand together keep their momentum.
+template <int D>
+Vec<D> surface_tension_from_water(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i,
+                                  double kappa_prime) {
+  const kernel::Support<D> si(ps.h[i]);
+  Vec<D> f = Vec<D>::Zero();
+  for (const auto j : nb.of(i)) {
+    if (ps.phase_of(j) != Phase::Water) continue;
+    const Vec<D> d = ps.x[i] - ps.x[j];
+    f += surface_tension_pair_force<D>(kappa_prime, ps.m[i], ps.m[j], d, d.norm(), si, ps.h[j]);
+  }
+  return f;
+}
+
+}  // namespace
+
 template <int D>
 void add_water_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const WaterParams& params,
                       const MatArray<D>& correction) {
@@ -15,6 +35,8 @@ void add_water_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Wate
   // Dynamic: the work per particle varies (walls, free surface) and moving particles are stored first.
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
+    if (ps.phase_of(i) == Phase::Sand && kappa_prime != 0.0)
+      ps.force[i] += surface_tension_from_water(ps, nb, i, kappa_prime);
     if (ps.phase_of(i) != Phase::Water) continue;
     const double Vi = ps.volume(i), Pi = ps.p[i], mi = ps.m[i];
     const Vec<D> xi = ps.x[i], vi = ps.v[i];

@@ -20,8 +20,11 @@ struct WaterParams {
 
 /// Adds to ps.force the pair forces of eqs 4 and 5 and surface tension, for every moving particle,
 /// from water and boundary neighbours. Boundary neighbours exert pressure (their wall-model
-/// pressure) and, when rough, viscosity against their zero velocity. Gather loop: each particle
-/// writes only its own force.
+/// pressure) and, when rough, viscosity against their zero velocity. Surface tension acts between
+/// water and water and between water and sand, on both partners: a moving sand particle gathers
+/// the reaction of its water neighbours (pressure and viscosity between sand and water are
+/// gathered by the sand's own forces, sand/sand_forces.hpp). Gather loop: each particle writes
+/// only its own force.
 template <int D>
 void add_water_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const WaterParams& params,
                       const MatArray<D>& correction);

@@ -1,0 +1,97 @@
+// Time integration: the symplectic Euler step of free particles against the exact solution of its
+// own recurrence (free fall, linear spring), and the rigid-cluster sums [thesis eq. 13]
+// [thesis eq. 14] that drive the clusters' motion, under an external load.
+#include <boost/test/unit_test.hpp>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "sand/rigid_body.hpp"
+#include "simulator/simulator.hpp"
+#include "simulator/symplectic_euler.hpp"
+
+using namespace sc;
+
+BOOST_AUTO_TEST_SUITE(integrator)
+
+BOOST_AUTO_TEST_CASE(free_fall_matches_the_discrete_solution) {
+  // A lone particle in the simulator under gravity g with a fixed step Δt: the scheme's recurrence
+  // v_{k+1} = v_k + g Δt, x_{k+1} = x_k + Δt v_{k+1} has the closed form v_n = v_0 + n g Δt,
+  // x_n = x_0 + n Δt v_0 + g Δt² n(n + 1)/2 (explicit Euler would give n(n − 1)/2). To round-off.
+  ParticleSet<2> ps;
+  const std::size_t i = ps.append();
+  ps.m[i] = 0.1;
+  ps.h[i] = 0.03;
+  ps.rho0[i] = ps.rho[i] = 1000.0;
+  const Vec<2> x0(0.3, 2.0), v0(0.5, 1.5);
+  ps.x[i] = x0;
+  ps.v[i] = v0;
+  SimulationParams params;
+  params.gravity = {0.0, -9.81};
+  params.dt_max = 2e-3;
+  params.domain_min = {-10.0, -10.0};
+  params.domain_max = {10.0, 10.0};
+  Simulator<2> sim(ps, params);
+  const int n = 400;
+  for (int k = 0; k < n; ++k) BOOST_REQUIRE(sim.step() == params.dt_max);
+  const double dt = params.dt_max;
+  const Vec<2> g(0.0, -9.81);
+  const Vec<2> v_exact = v0 + n * dt * g;
+  const Vec<2> x_exact = x0 + n * dt * v0 + (dt * dt * n * (n + 1) / 2.0) * g;
+  BOOST_TEST((sim.particles().v[0] - v_exact).norm() <= 1e-12 * v_exact.norm());
+  BOOST_TEST((sim.particles().x[0] - x_exact).norm() <= 1e-12 * x_exact.norm());
+}
+
+BOOST_AUTO_TEST_CASE(linear_spring_matches_the_discrete_solution) {
+  // A particle on a linear spring F = −k x stepped with symplectic_euler_step: the recurrence
+  // (x, v) → (x + Δt v', v' = v − Δt ω² x) has the matrix [[1 − ω²Δt², Δt], [−ω²Δt, 1]] of
+  // determinant 1, so x_n = x_0 cos nθ + B sin nθ with cos θ = 1 − ω²Δt²/2 and
+  // B = (x_1 − x_0 cos θ)/sin θ, x_1 = (1 − ω²Δt²) x_0 + Δt v_0: the scheme neither gains nor
+  // loses amplitude. To round-off over 2000 steps (about 30 periods).
+  const double m = 0.2, k = 50.0, omega = std::sqrt(k / m), dt = 0.01;
+  const double x0 = 0.05, v0 = -0.3;
+  const double theta = std::acos(1.0 - 0.5 * omega * omega * dt * dt);
+  const double x1 = (1.0 - omega * omega * dt * dt) * x0 + dt * v0;
+  const double B = (x1 - x0 * std::cos(theta)) / std::sin(theta);
+  Vec<3> x(x0, 0.0, 0.0), v(v0, 0.0, 0.0);
+  double worst = 0.0;
+  for (int n = 1; n <= 2000; ++n) {
+    symplectic_euler_step<3>(x, v, Vec<3>(-k * x), m, dt, 1.0);
+    worst = std::max(worst, std::abs(x[0] - (x0 * std::cos(n * theta) + B * std::sin(n * theta))));
+  }
+  const double amplitude = std::hypot(x0, B);
+  BOOST_TEST(worst <= 1e-11 * amplitude);
+  BOOST_TEST(x.tail<2>().norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(cluster_sums_eqs_13_14_carry_an_external_load) {
+  // [thesis eq. 13] [thesis eq. 14] on a random cluster with internal central pair forces, gravity
+  // and one external point load P at member q: F_cluster = M g + P and τ_cluster = (x_q − x_cm) × P,
+  // to round-off (internal forces and uniform gravity add nothing).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const int n = 25, q = 7;
+  VecArrayOf<3> x(n), f(n);
+  std::vector<double> m(n);
+  const Vec<3> g(0.0, 0.0, -9.81), P(3.0, -1.0, 2.0);
+  for (int i = 0; i < n; ++i) {
+    x[i] = Vec<3>(u(rng), u(rng), u(rng));
+    m[i] = 0.5 + u(rng);
+  }
+  for (int i = 0; i < n; ++i) {
+    f[i] = m[i] * g;
+    for (int j = 0; j < n; ++j)
+      if (i != j) f[i] += (x[i] - x[j]) * (1.0 / (1.0 + (x[i] - x[j]).norm()));  // central, f_ij = −f_ji
+  }
+  f[q] += P;
+  std::vector<std::size_t> members(n);
+  std::iota(members.begin(), members.end(), std::size_t{0});
+  const auto [M, c] = mass_and_centre<3>(members, m, x);
+  const Vec<3> F = cluster_force<3>(members, f);
+  const Vec<3> tau = cluster_torque<3>(members, x, c, f);
+  BOOST_TEST((F - (M * g + P)).norm() <= 1e-12 * (M * g + P).norm());
+  const Vec<3> tau_exact = (x[q] - c).cross(P);
+  BOOST_TEST((tau - tau_exact).norm() <= 1e-12 * tau_exact.norm() * n);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
