@@ -145,11 +145,48 @@ def case_section(run_dir, c):
     return out + "<div>" + "".join(image(os.path.join(run_dir, p)) for p in c["plots"]) + "</div>"
 
 
+def metric_cell(run, name):
+    """A metric of one form of an errata run, coloured by its gate."""
+    m = run["metrics"].get(name)
+    if m is None:
+        return "n/a"
+    return (number(m["value"]), "pass") if m["pass"] else (number(m["value"]) + " FAIL", "fail")
+
+
+def errata_section(errata):
+    """The errata-impact table: each erratum's printed form against the corrected one, per case
+    and metric, or the step at which the printed form blew up (report.json "errata")."""
+    rows = []
+    for e in errata:
+        head = [esc(e["equation"]), f"<code>{esc(json.dumps(e['switch']))}</code>", esc(e["printed_form"])]
+        if not e["cases"]:
+            rows.append(head + ["(no affected case in this run)", "", "", ""])
+        for c in e["cases"]:
+            corrected, printed = c["corrected"], c["printed"]
+            if printed.get("blew_up_at_step") is not None:
+                rows.append(head + [esc(c["case"]), "all", (esc(corrected["status"]), corrected["status"]),
+                                    (f"blew up at step {printed['blew_up_at_step']}", "error")])
+                continue
+            if printed["status"] == "error":
+                rows.append(head + [esc(c["case"]), "all", (esc(corrected["status"]), corrected["status"]),
+                                    (esc(printed.get("message", "error")), "error")])
+                continue
+            for name in corrected["metrics"]:
+                rows.append(head + [esc(c["case"]), esc(name), metric_cell(corrected, name), metric_cell(printed, name)])
+    return ("<h2 id=\"errata\">Errata impact</h2><p>Each erratum's printed form (its case-file switch, "
+            "docs/equations.md &sect;5) run on the cases it affects at the finest spacing of the tier, "
+            "against the corrected form of the normal run.</p>"
+            + table(["eq", "switch", "printed form", "case", "metric", "corrected", "printed"], rows))
+
+
 def main():
     run_dir = sys.argv[1]
     with open(os.path.join(run_dir, "report.json")) as f:
         report = json.load(f)
-    body = header(report) + overview(report["cases"]) + "".join(case_section(run_dir, c) for c in report["cases"])
+    body = header(report) + overview(report["cases"])
+    if "errata" in report:
+        body += errata_section(report["errata"])
+    body += "".join(case_section(run_dir, c) for c in report["cases"])
     path = os.path.join(run_dir, "report.html")
     with open(path + ".tmp", "w") as f:
         f.write(page("sandcastle validation", body))

@@ -190,6 +190,34 @@ BOOST_AUTO_TEST_CASE(two_particle_diffusion_eq_28_29_direction) {
   BOOST_TEST(pair_flow(j, i, 0.6) == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(literal_eq_28_gives_surface_water_a_pore_velocity_as_lenaerts_case_b) {
+  // [thesis eq. 28] as printed (porous.diffusion = "lenaerts_literal"): free water next to a dry
+  // porous bed takes part as Lenaerts' case B, a saturated porous particle with φ = 1 and S = 1, so
+  // [thesis eq. 27] gives it a pore velocity into the bed: at least the gravity drive K ρ^f g/μ
+  // downwards, plus the capillary suction of the dry bed. Under 28′ contact water has none.
+  const Vec<2> g(0.0, -9.81);
+  for (const PorousDiffusion form : {PorousDiffusion::Conserving, PorousDiffusion::LenaertsLiteral}) {
+    PorousParams p = test_params();
+    p.diffusion = form;
+    ParticleSet<2> ps;
+    add_block(ps, p, Phase::Boundary, {0.0, 0.0}, {0.1, 0.1}, 0.0);
+    add_block(ps, p, Phase::Water, {0.0, 0.1}, {0.1, 0.13}, 0.0);
+    NeighbourGrid<2> nb;
+    nb.rebuild(ps);
+    PorousWork<2> w;
+    porous_step(ps, nb, p, g, 1e-4, w);
+    const double gravity_drive = p.permeability * kRho * 9.81 / p.fluid_viscosity;
+    int checked = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (ps.phase_of(i) != Phase::Water || ps.x[i][1] > 0.1 + kDx || std::abs(ps.x[i][0] - 0.055) > 0.02) continue;
+      ++checked;
+      if (form == PorousDiffusion::Conserving) BOOST_TEST(ps.pore_velocity[i].norm() == 0.0);
+      else BOOST_TEST(-ps.pore_velocity[i][1] > gravity_drive);
+    }
+    BOOST_TEST(checked > 0);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(diffusion_carries_the_darcy_flux_on_a_lattice) {
   // [thesis eq. 28] in form 28′ with the calibrated length: a uniform pore velocity on a lattice
   // carries exactly c v across a plane (c = m_p/V), the mass flux of eqs 26-27.

@@ -98,6 +98,8 @@ int main(int argc, char** argv) {
   val->add_flag("!--no-plots", vopt.plots, "skip the PNG plots and report.html");
   val->add_option("--baselines-dir", vopt.baselines_dir, "folder of baselines (default: reference/baselines)");
   val->add_option("--max-particles", vopt.max_particles, max_help)->check(CLI::PositiveNumber);
+  val->add_flag("--errata", vopt.errata,
+                "also run each erratum's printed form on the cases it affects (errata-impact table)");
 
   sc::ValidateOptions bopt;
   bopt.plots = false;

@@ -56,6 +56,7 @@ struct ValidateOptions {
   std::string baselines_dir;       ///< default: <source>/reference/baselines
   bool plots = true;
   double max_particles = kDefaultMaxParticles;     ///< estimated particles above which a run is refused (--max-particles)
+  bool errata = false;             ///< also run each erratum's printed form on its cases (--errata; validation/errata.hpp)
 };
 
 /// The validation suite; returns the exit code (0 only if every case passed).

@@ -6,6 +6,7 @@
 
 #include "baseline.hpp"
 #include "data_root.hpp"
+#include "errata.hpp"
 #include "io/atomic_file.hpp"
 #include "report.hpp"
 #include "report_scripts.hpp"
@@ -92,13 +93,14 @@ int validate(const ValidateOptions& opt) {
     }
     write_file_atomic(opt.out_dir + "/report.json", report_document(entries).dump(2) + "\n");
   }
-  const json report = report_document(entries);
+  json report = report_document(entries);
+  if (opt.errata) report["errata"] = run_errata(opt, cases_dir, entries);
   write_file_atomic(opt.out_dir + "/report.json", report.dump(2) + "\n");
   if (opt.plots) {
     run_plot_script(opt.out_dir);
     run_report_script("html_report.py", {opt.out_dir});  // report.html, with the plots embedded
   }
-  const std::string summary = summary_markdown(report) + baseline_markdown(report);
+  const std::string summary = summary_markdown(report) + baseline_markdown(report) + errata_markdown(report);
   write_file_atomic(opt.out_dir + "/summary.md", summary);
   std::cout << summary;
   return exit_code;

@@ -114,8 +114,9 @@ void check_blocks_inside_tank(const CaseSpec& c) {
 
 }  // namespace
 
-CaseSpec load_case(const std::string& path) {
-  const json doc = read_json_file(path);
+CaseSpec load_case(const std::string& path) { return load_case(read_json_file(path), path); }
+
+CaseSpec load_case(const json& doc, const std::string& path) {
   JsonObject o(doc, "", path);
   CaseSpec c;
   c.file = path;

@@ -63,4 +63,8 @@ struct CaseSpec {
 /// Loads and checks a case file. Throws InputError (file, JSON path, rule) on any problem.
 CaseSpec load_case(const std::string& path);
 
+/// Loads and checks a case document already read from `path` (named in errors), e.g. one with a
+/// JSON merge patch applied (validation/errata.hpp).
+CaseSpec load_case(const json& doc, const std::string& path);
+
 }  // namespace sc

@@ -118,6 +118,7 @@ void fill_slot(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, doubl
     s.volume = p.water_mass / rho_f;
     s.contact_speed = p.spacing / dt;
     s.flow_factor = ps.m[i] > 0.0 ? p.water_mass / ps.m[i] : 0.0;  // gives as a full particle
+    if (p.diffusion == PorousDiffusion::LenaertsLiteral) s.flow_factor = 1.0;  // Lenaerts' case B: S = 1, S^β = 1
     return;
   }
   const bool fixed = ps.phase_of(i) == Phase::Boundary;
@@ -176,22 +177,25 @@ void set_contact_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const 
 /// Pore velocity (eq 27) of porous particles from the gradients (eq 22) of the capillary potential
 /// (water in contact counts as saturated, P^c = 0) and of the pore pressure (over porous particles
 /// only: the pond's pressure enters through the particles in contact). Water particles give by
-/// contact (pair_flow) and have no pore velocity.
+/// contact (pair_flow) and have no pore velocity, except under the literal eq 28 (switch
+/// "lenaerts_literal"), where they take part as Lenaerts' case B (Lenaerts 2008 §4.1): saturated
+/// porous particles with φ = 1 and S = 1 in eqs 3-10, so eq 27 gives them a pore velocity too.
 template <int D>
 void pore_velocities(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
                      PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
   const bool capillary = p.capillary_constant != 0.0;
+  const bool case_b = p.diffusion == PorousDiffusion::LenaertsLiteral;
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
-    if (!w.porous[i]) {
+    if (!w.porous[i] && !case_b) {
       ps.pore_velocity[i] = Vec<D>::Zero();
       continue;
     }
     const auto [grad_p, grad_c] = porous_gradients(ps, nb, w.pp, w.porous, w.pc, w.part, capillary, i, p.gradient);
-    ps.pore_velocity[i] = pore_velocity<D>(p.permeability, p.fluid_viscosity, ps.porosity[i], grad_p, grad_c,
-                                           p.fluid_density, g);
+    const double phi = w.porous[i] ? ps.porosity[i] : 1.0;
+    ps.pore_velocity[i] = pore_velocity<D>(p.permeability, p.fluid_viscosity, phi, grad_p, grad_c, p.fluid_density, g);
     w.slot[i].pore_velocity = ps.pore_velocity[i];
   }
 }

@@ -20,7 +20,7 @@ bool is_sand(std::uint8_t phase) { return static_cast<Phase>(phase) == Phase::Sa
 /// Length of the rigid stress (eq 12a) of particle i.
 template <int D>
 double rigid_length(const ParticleSet<D>& ps, std::size_t i, const SandParams& sand) {
-  return sand.rigid_length == RigidStressLength::Support ? ps.h[i] : rest_spacing<D>(ps.m[i], ps.rho[i]);
+  return rigid_stress_length(sand.rigid_length, ps.h[i], rest_spacing<D>(ps.m[i], ps.rho[i]));
 }
 
 /// Contact force on i from j (contact_force). The law (a wall particle counts as infinitely heavy)

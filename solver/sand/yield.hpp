@@ -34,6 +34,13 @@ inline Mat<D> rigid_stress(const Mat<D>& strain_rate, double density, double len
   return (-density * length * length / dt) * strain_rate;
 }
 
+/// Length L of the rigid stress [thesis eq. 12a] of a particle with kernel support `support` and
+/// spacing `spacing` (s_i = V_i^(1/D)): the spacing (RigidStressLength::Spacing, default) or, as
+/// printed, the support (RigidStressLength::Support, case key sand.rigid_stress_length = "support").
+inline double rigid_stress_length(RigidStressLength form, double support, double spacing) {
+  return form == RigidStressLength::Support ? support : spacing;
+}
+
 /// Strength factor k of the yield test: the factor on sin φ σ_m in eq 10 for each yield surface.
 /// The flowing stress σ_f of eq 8 (traceless D) has √3 σ̄_f = (3/√2) sin φ p (docs/equations.md,
 /// eq 8, erratum 8d), so with k = 1 (eq 10 as printed) the stress of yielding sand lies 3/√2 ≈ 2.12 times outside the
