@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "errata.hpp"
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "porous/pore_pressure.hpp"
 #include "sand/sand_forces.hpp"
 #include "sand/yield.hpp"

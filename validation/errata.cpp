@@ -4,7 +4,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "observer.hpp"
 
 namespace sc {
