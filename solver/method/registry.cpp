@@ -85,6 +85,8 @@ CaseSpec with_method(CaseSpec spec, const std::string& name) {
     for (const auto& [other, params] : spec.methods.items()) supported += ", \"" + other + "\"";
     throw InputError(spec.file, "/methods", "--method " + name + ": the case supports only " + supported);
   }
+  if (spec.methods.contains(name))  // the method's own parameters are part of what its run depends on
+    spec.parameters_hash = parameters_hash(json{{"case", spec.parameters_hash}, {name, spec.methods[name]}});
   spec.method = name;
   return spec;
 }
