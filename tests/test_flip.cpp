@@ -159,6 +159,20 @@ FlipSolver<2> sand_and_water() {
 
 }  // namespace
 
+/// Volume of the sand [m^2]: per grid cell its particle count over the 2^D particles a full cell
+/// holds (seed_box), at most 1, times the cell's area. Particles crowding into fewer cells than they
+/// filled at the start (compaction) lower it; spreading at constant count per cell keeps it.
+double sand_volume(const FlipSolver<2>& solver) {
+  const MacGrid<2>& grid = solver.grid();
+  std::vector<int> count(grid.cell_count(), 0);
+  const FlipParticles<2>& ps = solver.particles();
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.is_sand(i)) ++count[grid.cell(grid.cell_of(ps.x[i]))];
+  double cells = 0.0;
+  for (const int n : count) cells += std::min(1.0, n / 4.0);
+  return cells * grid.dx * grid.dx;
+}
+
 BOOST_AUTO_TEST_SUITE(flip)
 
 // [Zhu-Bridson 2005: Solving on the Grid]: after the projection the discrete divergence of every
@@ -272,6 +286,28 @@ BOOST_AUTO_TEST_CASE(slab_on_incline_sticks_or_slides) {
   const double v = slab_on_incline(35.0, t);
   BOOST_TEST_MESSAGE("slab at 35 deg: v " << v << " m/s, expected " << expected);
   BOOST_TEST(std::abs(v / expected - 1.0) < 0.02);
+}
+
+// METHOD_REFERENCES.md F6 (issue #19 point 3): the model cannot dilate and its projection keeps the
+// sand incompressible, so a collapsing column (0.2 x 0.1 m, φ = 20°) keeps its volume within 2 %
+// while it spreads.
+BOOST_AUTO_TEST_CASE(collapsing_column_keeps_its_sand_volume) {
+  auto params = tank<2>(Vec<2>(0.6, 0.3), 0.02);
+  params.sand.rest_density = 2650.0;
+  params.sand.friction_angle_deg = 20.0;
+  FlipParticles<2> ps;
+  seed_box<2>(MacGrid<2>(params.tank_lo, params.tank_hi, params.dx), Vec<2>(0.0, 0.0), Vec<2>(0.2, 0.1), Phase::Sand,
+              2650.0, 0.5, 5, ps);
+  FlipSolver<2> solver(params, ps);
+  const double v0 = sand_volume(solver);
+  BOOST_TEST(v0 == 0.2 * 0.1, boost::test_tools::tolerance(1e-9));
+  double x_max = 0.0;
+  while (solver.time() < 0.5) solver.step();
+  for (const auto& x : solver.particles().x) x_max = std::max(x_max, x[0]);
+  const double v = sand_volume(solver);
+  BOOST_TEST_MESSAGE("sand volume " << v / v0 << " of the start, front at " << x_max << " m");
+  BOOST_TEST(x_max > 0.25);  // the column did collapse
+  BOOST_TEST(std::abs(v / v0 - 1.0) < 0.02);
 }
 
 // Determinism: the gathered transfers and fixed orders give bitwise the same particles with 1 and

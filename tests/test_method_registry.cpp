@@ -2,6 +2,8 @@
 // through the method-neutral ParticleView exactly as its checksum hashes it, is deterministic,
 // resumes bitwise from its own checkpoint; an unknown or unsupported method name is bad input
 // (exit 2) naming the case file and the JSON path, before anything is allocated.
+#include <omp.h>
+
 #include <boost/test/unit_test.hpp>
 #include <filesystem>
 #include <fstream>
@@ -41,6 +43,15 @@ std::string write_case(const json& doc) {
 json small_case_json() {
   std::ifstream in(small_case);
   return json::parse(in);
+}
+
+/// The small dam break with a sand block beside the water, run by FLIP (its "methods"/"flip").
+json small_flip_case_json() {
+  json doc = small_case_json();
+  doc["sand"] = {{"rest_density", 2650.0}, {"friction_angle", 30.0}, {"cohesion", 0.0}};
+  doc["blocks"].push_back({{"phase", "sand"}, {"min", {0.2, 0.0}}, {"max", {0.3, 0.1}}});
+  doc["methods"] = {{"flip", {{"cell_size", 2.0}, {"flip_ratio", 0.95}}}};
+  return doc;
 }
 
 }  // namespace
@@ -146,7 +157,7 @@ BOOST_AUTO_TEST_CASE(an_unknown_method_is_rejected_with_the_case_file_and_json_p
   } catch (const InputError& e) {
     BOOST_TEST(e.json_path() == "/methods/no_such_method");
   }
-  BOOST_TEST(method_names() == std::vector<std::string>{"sph"});
+  BOOST_TEST(method_names() == (std::vector<std::string>{"sph", "flip"}));
 }
 
 BOOST_AUTO_TEST_CASE(method_flag_must_name_a_method_the_case_supports) {
@@ -188,6 +199,84 @@ BOOST_AUTO_TEST_CASE(sandcastle_run_exits_2_for_an_unknown_method_before_writing
   BOOST_TEST(flag.exit_code == 2);
   BOOST_TEST(flag.err.find("/methods: --method flip") != std::string::npos, flag.err);
   BOOST_TEST(!fs::exists(out));
+}
+
+// FLIP through the seam (solver/flip/flip_method.hpp): the case's blocks become FLIP particles at
+// the case spacing, the run steps, its view shows what its checksum hashes, mass is exact, it
+// times its own stages and writes no checkpoints.
+BOOST_AUTO_TEST_CASE(a_flip_run_built_through_the_registry_steps) {
+  const CaseSpec spec = with_method(load_case(write_case(small_flip_case_json())), "flip");
+  const std::unique_ptr<Method<2>> run = make_method<2>(spec, 0.01);
+  BOOST_TEST(run->name() == "flip");
+  BOOST_TEST(!run->writes_checkpoints());
+  BOOST_TEST(!method_writes_checkpoints("flip"));
+  const ParticleView<2> start = run->particles();
+  BOOST_TEST(start.size() == 200u + 100u);  // 10 x 20 water and 10 x 10 sand at 0.01 m
+  double mass0 = 0.0;
+  for (std::size_t i = 0; i < start.size(); ++i) mass0 += start.m[i];
+  BOOST_TEST(mass0 == 0.1 * 0.2 * 1000.0 + 0.1 * 0.1 * 2650.0, boost::test_tools::tolerance(1e-12));
+  const std::string initial = run->checksum();
+  for (int k = 0; k < 40; ++k) run->step();
+  const ParticleView<2> view = run->particles();
+  for (std::size_t n : {view.v.size(), view.m.size(), view.phase.size(), view.pressure.size(), view.density.size(),
+                        view.support.size()})
+    BOOST_TEST(n == view.size());
+  BOOST_TEST(view_checksum(view) == run->checksum());
+  BOOST_TEST(run->checksum() != initial);
+  double mass = 0.0, p_max = 0.0;
+  for (std::size_t i = 0; i < view.size(); ++i) {
+    mass += view.m[i];
+    p_max = std::max(p_max, view.pressure[i]);
+  }
+  BOOST_TEST(mass == mass0);  // particles carry their mass unchanged
+  // The pressure under the 0.2 m water column is of the order of ρ g H (about 2 kPa).
+  BOOST_TEST(p_max > 500.0);
+  BOOST_TEST(p_max < 4000.0);
+  std::vector<std::string> stages;
+  for (const StageTime& s : run->stage_times()) stages.push_back(s.name);
+  BOOST_TEST(stages == (std::vector<std::string>{"transfer", "projection", "sand stress", "rigid groups", "advection"}));
+  BOOST_TEST(run->vtu_frame().find("Name=\"pressure\"") != std::string::npos);
+  BOOST_TEST(run->last_good_frame().ends_with("</VTKFile>\n"));
+}
+
+BOOST_AUTO_TEST_CASE(a_flip_run_is_bitwise_the_same_on_one_and_two_threads) {
+  const CaseSpec spec = with_method(load_case(write_case(small_flip_case_json())), "flip");
+  const int saved = omp_get_max_threads();
+  std::string checksum[2];
+  for (const int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    const std::unique_ptr<Method<2>> run = make_method<2>(spec, 0.01);
+    for (int k = 0; k < 40; ++k) run->step();
+    checksum[threads - 1] = run->checksum();
+  }
+  omp_set_num_threads(saved);
+  BOOST_TEST(checksum[0] == checksum[1]);
+}
+
+BOOST_AUTO_TEST_CASE(an_unknown_flip_parameter_is_rejected_with_its_path) {
+  json doc = small_flip_case_json();
+  doc["methods"]["flip"]["cell_sise"] = 2.0;
+  const std::string file = write_case(doc);
+  try {
+    check_method(load_case(file));  // the case still runs SPH by default: FLIP's keys are checked all the same
+    BOOST_ERROR("an unknown FLIP key was accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.file() == file);
+    BOOST_TEST(e.json_path() == "/methods/flip/cell_sise");
+  }
+  const std::string out = test::fresh_path("method_out");
+  const test::ProcessResult r = test::run_sandcastle({"run", file, "--out", out, "--method", "flip"}, 30.0);
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.err.find("/methods/flip/cell_sise") != std::string::npos, r.err);
+  BOOST_TEST(!fs::exists(out));
+  doc = small_flip_case_json();
+  doc["methods"]["flip"]["cell_size"] = 3.0;  // 0.4 m is not a whole number of 0.03 m cells
+  try {
+    make_method<2>(with_method(load_case(write_case(doc)), "flip"), 0.01);
+    BOOST_ERROR("a tank that is not a whole number of cells was accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.json_path() == "/methods/flip/cell_size");
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,10 +1,11 @@
 #include "core/particle_set.hpp"
 
-#include <cstdio>
 #include <cstring>
 #include <omp.h>
 #include <type_traits>
 #include <string>
+
+#include "core/checksum.hpp"
 
 namespace sc {
 
@@ -139,21 +140,7 @@ void ParticleSet<D>::refresh_from(const ParticleSet& other) {
 
 template <int D>
 std::string ParticleSet<D>::checksum() const {
-  std::uint64_t hash = 1469598103934665603ull;
-  auto mix = [&hash](const void* data, std::size_t bytes) {
-    const auto* c = static_cast<const unsigned char*>(data);
-    for (std::size_t k = 0; k < bytes; ++k) {
-      hash ^= c[k];
-      hash *= 1099511628211ull;
-    }
-  };
-  for (std::size_t i = 0; i < size(); ++i) {
-    mix(x[i].data(), sizeof(double) * D);
-    mix(v[i].data(), sizeof(double) * D);
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(hash));
-  return buf;
+  return state_checksum<D>(std::span<const Vec<D>>(x.data(), size()), std::span<const Vec<D>>(v.data(), size()));
 }
 
 std::string_view phase_name(Phase p) {

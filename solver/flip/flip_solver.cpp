@@ -10,23 +10,28 @@
 namespace sc::flip {
 
 template <int D>
-void seed_box(const MacGrid<D>& grid, const Vec<D>& lo, const Vec<D>& hi, Phase phase, double density, double jitter,
-              unsigned seed, FlipParticles<D>& ps) {
+void seed_lattice(const Vec<D>& lo, const Vec<D>& hi, double spacing, Phase phase, double density, double jitter,
+                  unsigned seed, FlipParticles<D>& ps) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> uniform(-0.5, 0.5);
-  const double sub = 0.5 * grid.dx;
   Index<D> dims{};
-  for (int d = 0; d < D; ++d) dims[d] = static_cast<int>(std::lround((hi[d] - lo[d]) / sub));
-  const double mass = density * std::pow(grid.dx, D) / (1 << D);
+  for (int d = 0; d < D; ++d) dims[d] = static_cast<int>(std::lround((hi[d] - lo[d]) / spacing));
+  const double mass = density * std::pow(spacing, D);
   for (std::size_t k = 0; k < MacGrid<D>::count(dims); ++k) {
     const Index<D> s = MacGrid<D>::unflat(k, dims);
     Vec<D> x;
-    for (int d = 0; d < D; ++d) x[d] = lo[d] + (s[d] + 0.5 + jitter * uniform(rng)) * sub;
+    for (int d = 0; d < D; ++d) x[d] = lo[d] + (s[d] + 0.5 + jitter * uniform(rng)) * spacing;
     ps.x.push_back(x);
     ps.v.push_back(Vec<D>::Zero());
     ps.m.push_back(mass);
     ps.phase.push_back(static_cast<std::uint8_t>(phase));
   }
+}
+
+template <int D>
+void seed_box(const MacGrid<D>& grid, const Vec<D>& lo, const Vec<D>& hi, Phase phase, double density, double jitter,
+              unsigned seed, FlipParticles<D>& ps) {
+  seed_lattice<D>(lo, hi, 0.5 * grid.dx, phase, density, jitter, seed, ps);
 }
 
 template <int D>
@@ -54,10 +59,12 @@ void FlipSolver<D>::transfer_to_grid() {
 
 template <int D>
 void FlipSolver<D>::sand_step(double dt, const FaceField<D>& before_projection) {
+  auto stress_scope = timers_.time(FlipStage::SandStress);
   const SandCells<D> sand = classify_sand<D>(grid_, cells_, u_, p_, params_.sand, dt);
   apply_frictional_stress<D>(grid_, cells_, sand, dt, u_);
   const double mu = params_.sand.wall_mu();
   wall_friction<D>(grid_, cells_, sand, p_, mu, dt, u_);
+  auto rigid_scope = timers_.time(FlipStage::RigidGroups);
   for (const auto& group : rigid_groups<D>(grid_, sand.rigid)) {
     Vec<D> centre = Vec<D>::Zero();
     for (const auto k : group) centre += grid_.cell_centre(MacGrid<D>::unflat(k, grid_.n));
@@ -87,26 +94,40 @@ void FlipSolver<D>::update_particles(double dt) {
 template <int D>
 double FlipSolver<D>::step() {
   const double dt = next_dt();
-  transfer_to_grid();
-  for (int a = 0; a < D; ++a)  // gravity on every face that received particle mass
-    for (std::size_t k = 0; k < u_[a].size(); ++k)
-      if (weight_[a][k] > 0.0) u_[a][k] += params_.gravity[a] * dt;
-  const FaceField<D> before_projection = u_;
-  try {
-    stats_ = project<D>(grid_, cells_, dt, params_.cg_tolerance, params_.cg_max_iterations, u_, p_);
-  } catch (const std::runtime_error& e) {
-    throw BlowUpError(steps_, time_, -1, "grid", "pressure", e.what());
+  FaceField<D> before_projection;
+  {
+    auto scope = timers_.time(FlipStage::Transfer);
+    transfer_to_grid();
+    for (int a = 0; a < D; ++a)  // gravity on every face that received particle mass
+      for (std::size_t k = 0; k < u_[a].size(); ++k)
+        if (weight_[a][k] > 0.0) u_[a][k] += params_.gravity[a] * dt;
+    before_projection = u_;
+  }
+  {
+    auto scope = timers_.time(FlipStage::Projection);
+    try {
+      stats_ = project<D>(grid_, cells_, dt, params_.cg_tolerance, params_.cg_max_iterations, u_, p_);
+    } catch (const std::runtime_error& e) {
+      throw BlowUpError(steps_, time_, -1, "grid", "pressure", e.what());
+    }
   }
   sand_step(dt, before_projection);
-  const FaceField<D> known = known_faces<D>(grid_, cells_.label);
-  extrapolate<D>(grid_, known, params_.extrapolation_layers, u_);
-  extrapolate<D>(grid_, known, params_.extrapolation_layers, u_old_);
-  update_particles(dt);
+  {
+    auto scope = timers_.time(FlipStage::Advection);
+    const FaceField<D> known = known_faces<D>(grid_, cells_.label);
+    extrapolate<D>(grid_, known, params_.extrapolation_layers, u_);
+    extrapolate<D>(grid_, known, params_.extrapolation_layers, u_old_);
+    update_particles(dt);
+  }
   time_ += dt;
   ++steps_;
   return dt;
 }
 
+template void seed_lattice<2>(const Vec<2>&, const Vec<2>&, double, Phase, double, double, unsigned,
+                              FlipParticles<2>&);
+template void seed_lattice<3>(const Vec<3>&, const Vec<3>&, double, Phase, double, double, unsigned,
+                              FlipParticles<3>&);
 template void seed_box<2>(const MacGrid<2>&, const Vec<2>&, const Vec<2>&, Phase, double, double, unsigned,
                           FlipParticles<2>&);
 template void seed_box<3>(const MacGrid<3>&, const Vec<3>&, const Vec<3>&, Phase, double, double, unsigned,

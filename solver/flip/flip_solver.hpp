@@ -4,14 +4,25 @@
 // extends the velocity into the air, updates the particles (PIC for sand, FLIP blend for water) and
 // moves them (RK2).
 #pragma once
+#include <array>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
+#include "core/stage_timers.hpp"
 #include "flip/pressure.hpp"
 #include "flip/sand_step.hpp"
 #include "flip/transfer.hpp"
 
 namespace sc::flip {
+
+/// The stages of a step, in order: particles to grid (with gravity), pressure projection, the
+/// frictional sand stress and wall friction, rigid groups, and extrapolation, grid to particles and
+/// advection.
+enum class FlipStage { Transfer, Projection, SandStress, RigidGroups, Advection, Count };
+
+inline constexpr std::array<std::string_view, static_cast<std::size_t>(FlipStage::Count)> flip_stage_names = {
+    "transfer", "projection", "sand stress", "rigid groups", "advection"};
 
 template <int D>
 struct FlipParams {
@@ -39,6 +50,13 @@ struct FlipParticles {
   std::size_t size() const { return x.size(); }
   bool is_sand(std::size_t i) const { return phase[i] == static_cast<std::uint8_t>(Phase::Sand); }
 };
+
+/// Fills the box [lo, hi] with particles on the lattice of the given spacing (one at the centre of
+/// each lattice cell), each moved by up to ±jitter/2 of the spacing per axis and of mass ρ spacing^D,
+/// at rest. Deterministic in `seed`.
+template <int D>
+void seed_lattice(const Vec<D>& lo, const Vec<D>& hi, double spacing, Phase phase, double density, double jitter,
+                  unsigned seed, FlipParticles<D>& ps);
 
 /// Fills the box [lo, hi] (whole cells of `grid`) with 2^D particles per cell, one in each cell of
 /// the 2x2(x2) sub-grid jittered by up to ±jitter/2 of a sub-cell [Zhu-Bridson 2005: Initializing
@@ -69,6 +87,9 @@ class FlipSolver {
   const CellState<D>& cells() const { return cells_; }
   const std::vector<double>& pressure() const { return p_; }
   const ProjectionStats& projection_stats() const { return stats_; }
+  /// Wall-clock seconds spent in each FlipStage since the start (or the last reset()).
+  StageClock<FlipStage>& timers() { return timers_; }
+  const StageClock<FlipStage>& timers() const { return timers_; }
 
  private:
   void transfer_to_grid();
@@ -85,6 +106,7 @@ class FlipSolver {
   ProjectionStats stats_;
   double time_ = 0.0;
   long steps_ = 0;
+  StageClock<FlipStage> timers_;
 };
 
 }  // namespace sc::flip

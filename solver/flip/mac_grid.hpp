@@ -100,7 +100,20 @@ struct MacGrid {
   /// Multilinear interpolation of the face values of component a at x [Zhu-Bridson 2005: Updating
   /// Particle Velocities] ("trilinearly interpolate"); exact for fields linear in x.
   double interpolate(int a, const std::vector<double>& field, const Vec<D>& x) const {
-    const Index<D> dims = face_dims(a);
+    return sample(a, face_dims(a), field, x);
+  }
+  /// Multilinear interpolation of cell-centred values (pressure) at x, clamped to the outermost
+  /// cell centres.
+  double interpolate_cells(const std::vector<double>& field, const Vec<D>& x) const { return sample(-1, n, field, x); }
+  Vec<D> velocity_at(const FaceField<D>& u, const Vec<D>& x) const {
+    Vec<D> v;
+    for (int a = 0; a < D; ++a) v[a] = interpolate(a, u[a], x);
+    return v;
+  }
+
+ private:
+  /// Multilinear interpolation on the nodes of `dims`, staggered along axis a (−1: cell centres).
+  double sample(int a, const Index<D>& dims, const std::vector<double>& field, const Vec<D>& x) const {
     Index<D> i0{};
     std::array<double, D> t{};
     for (int d = 0; d < D; ++d) {
@@ -120,11 +133,6 @@ struct MacGrid {
       value += w * field[flat(i, dims)];
     }
     return value;
-  }
-  Vec<D> velocity_at(const FaceField<D>& u, const Vec<D>& x) const {
-    Vec<D> v;
-    for (int a = 0; a < D; ++a) v[a] = interpolate(a, u[a], x);
-    return v;
   }
 };
 

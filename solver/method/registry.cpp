@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "flip/flip_method.hpp"
 #include "io/checkpoint.hpp"
 #include "simulator/sph_method.hpp"
 
@@ -9,20 +10,25 @@ namespace sc {
 
 namespace {
 
-/// One registered method: its case name, how it starts, and how it resumes from a checkpoint
-/// (null for a method that writes none).
+/// One registered method: its case name, how it starts, how it resumes from a checkpoint (null for
+/// a method that writes none), and how it checks its own "methods"/NAME parameters and the scene
+/// against what it can run (null when the case's own sections are all it reads).
 template <int D>
 struct Entry {
   const char* name;
   std::unique_ptr<Method<D>> (*make)(const CaseSpec&, double);
   std::unique_ptr<Method<D>> (*resume)(const CaseSpec&, double, const Checkpoint&);
+  void (*check)(const CaseSpec&);
 };
+
+void check_flip(const CaseSpec& spec) { read_flip_params(spec); }
 
 /// Every method of this build. A new method adds its line here (and its own folder under solver/).
 template <int D>
 const std::vector<Entry<D>>& entries() {
   static const std::vector<Entry<D>> table = {
-      {"sph", make_sph_method<D>, resume_sph_method<D>},
+      {"sph", make_sph_method<D>, resume_sph_method<D>, nullptr},
+      {"flip", make_flip_method<D>, nullptr, check_flip},
   };
   return table;
 }
@@ -67,6 +73,8 @@ void check_method(const CaseSpec& spec) {
   for (const auto& [name, params] : spec.methods.items())
     if (unknown(name))
       throw InputError(spec.file, "/methods/" + name, "unknown method \"" + name + "\"; this build knows " + known_names());
+  for (const Entry<2>& e : entries<2>())
+    if (e.check && spec.supports(e.name)) e.check(spec);
 }
 
 CaseSpec with_method(CaseSpec spec, const std::string& name) {
@@ -77,6 +85,8 @@ CaseSpec with_method(CaseSpec spec, const std::string& name) {
     for (const auto& [other, params] : spec.methods.items()) supported += ", \"" + other + "\"";
     throw InputError(spec.file, "/methods", "--method " + name + ": the case supports only " + supported);
   }
+  if (spec.methods.contains(name))  // the method's own parameters are part of what its run depends on
+    spec.parameters_hash = parameters_hash(json{{"case", spec.parameters_hash}, {name, spec.methods[name]}});
   spec.method = name;
   return spec;
 }

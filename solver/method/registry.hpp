@@ -16,7 +16,8 @@ namespace sc {
 std::vector<std::string> method_names();
 
 /// Throws InputError (the case file, JSON path /method or /methods/NAME, the rule) if the case
-/// names a method this build does not know. Allocates nothing.
+/// names a method this build does not know, or if a method it supports rejects its parameters
+/// ("methods"/NAME, e.g. an unknown key) or its scene. Allocates nothing.
 void check_method(const CaseSpec& spec);
 
 /// The case run with method `name` instead of its own: `name` must be the case's method or one
