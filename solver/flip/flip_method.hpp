@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "flip/flip_solver.hpp"
-#include "io/case_file.hpp"
+#include "case/case_file.hpp"
 #include "method/method.hpp"
 
 namespace sc {
