@@ -190,7 +190,7 @@ BOOST_AUTO_TEST_CASE(incline_sticks_below_and_slides_above_friction_angle) {
 }
 
 // With rotation, a sphere on a 45° incline rolls at (5/7) g sin θ when tan θ <= 3.5 μ (μ = tan 16°)
-// and slides at g(sin θ − μ cos θ) otherwise (μ = tan 15°), within 1 % (METHOD_REFERENCES D4).
+// and slides at g(sin θ − μ cos θ) otherwise (μ = tan 15°), within 1 % (docs/references.md §12).
 BOOST_AUTO_TEST_CASE(sphere_rolls_or_slides_on_45_degree_incline) {
   const double theta = pi / 4.0;
   const SlopeRun roll = run_on_incline(theta, std::tan(16.0 * pi / 180.0), true, 0.1, 0.2);
@@ -204,7 +204,7 @@ BOOST_AUTO_TEST_CASE(sphere_rolls_or_slides_on_45_degree_incline) {
 }
 
 // [Willett 2000: eq. 12-13]: the capillary force between two wet 1 mm spheres against separation
-// matches the worked values of METHOD_REFERENCES §3 (R = 1 mm, γ = 0.072, θ = 0, V = 1e-3 R³) within
+// matches the worked values of docs/references.md §12 (R = 1 mm, γ = 0.072, θ = 0, V = 1e-3 R³) within
 // 1 %, attracts, and vanishes beyond the rupture distance, for dry grains and for over-wet pairs.
 BOOST_AUTO_TEST_CASE(willett_bridge_force_against_separation) {
   const double R = 1e-3;
@@ -269,7 +269,7 @@ BOOST_AUTO_TEST_CASE(paper_bridge_force_closed_form) {
 }
 
 // A dry 2-D pile of discs (μ = 0.5, rolling resistance 0.3) must stand at a repose angle in the
-// range of DEM discs and sand, 20-35° (METHOD_REFERENCES §3: 20-25° without rolling resistance,
+// range of DEM discs and sand, 20-35° (docs/references.md §12; 20-25° without rolling resistance,
 // rolling resistance raises it). Known failure, kept as the gate: the regularised Coulomb law (and
 // rolling torque) resist a static load only viscously, so the pile creeps flatter than the gate;
 // standing piles need a tangential spring with contact history (Cundall-Strack), not yet built.
