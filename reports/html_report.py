@@ -74,13 +74,19 @@ def header(report):
             + (f"; baselines: {esc(baseline)}" if baseline else "") + "</p>")
 
 
+def key(c):
+    """A run's key: <case>, or <case>.<method> for a method other than the case's own."""
+    return c.get("run_id", c["name"])
+
+
 def overview(cases):
     rows = []
     for c in cases:
         b = c.get("baseline", {}).get("status", "n/a")
-        rows.append([f'<a href="#{esc(c["name"])}">{esc(c["name"])}</a>', esc(c["tier"]), (esc(c["status"]), c["status"]),
-                     (esc(b), b), number(c["particles"]), number(c["steps"]), number(c["wall_seconds"])])
-    return table(["case", "tier", "physics", "baseline", "particles", "steps", "wall [s]"], rows)
+        rows.append([f'<a href="#{esc(key(c))}">{esc(key(c))}</a>', esc(c.get("method", "sph")), esc(c["tier"]),
+                     (esc(c["status"]), c["status"]), (esc(b), b), number(c["particles"]), number(c["steps"]),
+                     number(c["wall_seconds"])])
+    return table(["case", "method", "tier", "physics", "baseline", "particles", "steps", "wall [s]"], rows)
 
 
 def metrics_table(metrics):
@@ -129,14 +135,14 @@ def baseline_overlays(run_dir, c):
     run = {s["name"]: s for s in doc["series"]}
     tags = []
     for plot in doc["plots"]:
-        path = os.path.join(run_dir, c["name"], "baseline_" + plot["file"])
+        path = os.path.join(run_dir, key(c), "baseline_" + plot["file"])
         overlay.draw(plot, base, run, ("baseline", "this run"), path)
         tags.append(image(path))
     return "<p>against the baseline:</p><div>" + "".join(tags) + "</div>"
 
 
 def case_section(run_dir, c):
-    out = f'<h2 id="{esc(c["name"])}">{esc(c["name"])} <span class="{c["status"]}">{esc(c["status"])}</span></h2>'
+    out = f'<h2 id="{esc(key(c))}">{esc(key(c))} <span class="{c["status"]}">{esc(c["status"])}</span></h2>'
     if "message" in c:
         out += f"<p><code>{esc(c['message'])}</code></p>"
     out += metrics_table(c["metrics"])
@@ -179,11 +185,36 @@ def errata_section(errata):
             + table(["eq", "switch", "printed form", "case", "metric", "corrected", "printed"], rows))
 
 
+def methods_section(run_dir, comparisons):
+    """One case run by several methods: a row per metric, a column per method beside the gate, and
+    the overlay plots of each observable by every method (report.json "methods")."""
+    out = ("<h2 id=\"methods\">Methods side by side</h2><p>The same case, observer, reference and gates, "
+           "run by each method that supports it.</p>")
+    for c in comparisons:
+        methods = c["methods"]
+        rows = []
+        for name, m in c["metrics"].items():
+            cells = []
+            for method in methods:
+                value, ok = m["values"].get(method), m["pass"].get(method)
+                if value is None and ok is None:
+                    cells.append("n/a")
+                else:
+                    cells.append((number(value), "pass") if ok else (number(value) + " FAIL", "fail"))
+            rows.append([esc(name), esc(json.dumps(m["limit"]))] + cells)
+        heads = [f'{m} ({c["status"][m]})' for m in methods]
+        out += f'<h3>{esc(c["name"])}</h3>' + table(["metric", "gate"] + heads, rows)
+        out += "<div>" + "".join(image(os.path.join(run_dir, p)) for p in c["plots"]) + "</div>"
+    return out
+
+
 def main():
     run_dir = sys.argv[1]
     with open(os.path.join(run_dir, "report.json")) as f:
         report = json.load(f)
     body = header(report) + overview(report["cases"])
+    if report.get("methods"):
+        body += methods_section(run_dir, report["methods"])
     if "errata" in report:
         body += errata_section(report["errata"])
     body += "".join(case_section(run_dir, c) for c in report["cases"])

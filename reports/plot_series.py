@@ -2,8 +2,9 @@
 """Draws the PNG plots of a validation run.
 
 Usage: plot_series.py RUN_DIR
-Reads RUN_DIR/report.json, and for every case its series.json (format: reports/README.md),
-and writes each plot it describes next to it. Uses matplotlib (Debian: python3-matplotlib).
+Reads RUN_DIR/report.json, and for every case its series.json (format: reports/README.md) and
+for every side-by-side comparison of methods its methods.json, and writes each plot they describe
+next to them. Uses matplotlib (Debian: python3-matplotlib).
 """
 import json
 import os
@@ -41,7 +42,7 @@ def main():
     run_dir = sys.argv[1]
     with open(os.path.join(run_dir, "report.json")) as f:
         report = json.load(f)
-    for case in report["cases"]:
+    for case in report["cases"] + report.get("methods", []):
         if not case.get("series"):
             continue
         path = os.path.join(run_dir, case["series"])

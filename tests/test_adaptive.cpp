@@ -176,7 +176,7 @@ BOOST_AUTO_TEST_CASE(every_particle_field_has_a_split_merge_rule) {
 BOOST_AUTO_TEST_CASE(split_conserves_mass_momentum_centre_and_water) {
   ParticleSet<3> ps, kids;
   add_particle<3>(ps, 0.008, Vec<3>(0.1, 0.2, 0.3), Vec<3>(1.5, -2.0, 0.25), 0.002, 0.4);
-  const double delta = 0.5 * particle_size<3>(0.004, 1000.0);
+  const double delta = 0.5 * particle_size<3>(0.004 / 1000.0);
   split_particle<3>(ps, 0, Vec<3>(0, 0, 1), delta, kids);
   BOOST_TEST(total(kids.m) == 0.008, tt::tolerance(1e-12));
   BOOST_TEST(total(kids.absorbed) == 0.002, tt::tolerance(1e-12));
@@ -246,7 +246,7 @@ std::size_t count_flip_flops(const AdaptiveParams& p, std::size_t& splits, std::
   std::size_t flips = 0;
   for (int trial = 0; trial < 20000; ++trial) {
     const double m = m0 * std::ldexp(1.0, level(rng));
-    const double elfs = 12.0 * particle_size<D>(m, 1000.0) * u(rng);
+    const double elfs = 12.0 * particle_size<D>(m / 1000.0) * u(rng);
     const Decision d = decide<D>(elfs, m, 1000.0, p);
     splits += d == Decision::Split;
     merges += d == Decision::Merge;

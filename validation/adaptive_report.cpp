@@ -47,7 +47,6 @@ double ensemble_value(const CaseSpec& spec, double dx, const RunSettings& settin
   for (int k = static_cast<int>(copies.size()) + 1; k < n; ++k) {
     CaseSpec nudged = spec;
     nudged.adaptive->params.split_offset *= 1.0 + 1e-5 * k;
-    nudged.validation.erase("uniform_twin");  // the copy is only observed, not compared again
     RunResult copy;
     if (!run_twin(nudged, dx, settings, "ensemble_" + std::to_string(k), "ensemble run " + std::to_string(k), run, copy))
       return run.observed.metrics.at(name).value;

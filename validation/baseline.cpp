@@ -139,8 +139,11 @@ json compare_with_baseline(const CaseSpec& spec, const json& entry, const std::s
                            const std::string& baselines_dir) {
   const RunRecord run = record_from_entry(entry, run_dir);
   check_limit_names(spec, run);
-  const std::string file = baselines_dir + "/" + spec.name + ".json";
-  if (!fs::exists(file)) return missing(file, "no baseline; bless one with `sandcastle baseline --case " + spec.name + "`");
+  const std::string id = entry.value("run_id", spec.name);
+  const std::string file = baselines_dir + "/" + id + ".json";
+  if (!fs::exists(file))
+    return missing(file, "no baseline; bless one with `sandcastle baseline --case " + spec.name +
+                             (id == spec.name ? "" : " --method " + entry.at("method").get<std::string>()) + "`");
   const json doc = read_json_file(file);
   const RunRecord base = record_from_baseline(doc, file);
   if (base.tier != run.tier || base.spacing != run.spacing)
@@ -185,29 +188,37 @@ json baseline_document(const json& report, const json& entry, const std::string&
           {"metrics", metrics}, {"series", series}};
 }
 
-int write_baselines(const std::string& run_dir, const std::string& baselines_dir, const std::vector<std::string>& names) {
+int write_baselines(const std::string& run_dir, const std::string& baselines_dir, const std::vector<std::string>& names,
+                    const std::vector<std::string>& methods) {
   const json report = read_json_file(run_dir + "/report.json");
   const std::string date = utc_now();
   int exit_code = kSuccess;
-  std::set<std::string> wanted(names.begin(), names.end());
+  const std::set<std::string> wanted(names.begin(), names.end());
+  std::set<std::string> found;
+  const bool all_methods = methods == std::vector<std::string>{"all"};
   fs::create_directories(baselines_dir);
   for (const json& entry : report.at("cases")) {
-    const std::string name = entry.at("name");
-    if (!wanted.empty() && !wanted.erase(name)) continue;
+    const std::string name = entry.at("name"), id = run_key(entry);
+    if (!wanted.empty() && !wanted.count(name)) continue;
+    const bool method_wanted = all_methods || (methods.empty() ? id == name
+                                                               : std::count(methods.begin(), methods.end(), entry.value("method", "")) > 0);
+    if (!method_wanted) continue;
+    found.insert(name);
     if (entry.at("status") == "error") {
-      std::cerr << "error: " << name << " stopped with an error; no baseline written\n";
+      std::cerr << "error: " << id << " stopped with an error; no baseline written\n";
       exit_code = kBadInput;
       continue;
     }
-    if (entry.at("status") == "fail") std::cerr << "warning: " << name << " fails its physics gate; blessing it anyway\n";
-    const std::string file = baselines_dir + "/" + name + ".json";
+    if (entry.at("status") == "fail") std::cerr << "warning: " << id << " fails its physics gate; blessing it anyway\n";
+    const std::string file = baselines_dir + "/" + id + ".json";
     write_file_atomic(file, baseline_document(report, entry, run_dir, date).dump(1) + "\n");
     std::cout << "baseline " << file << " (checksum " << entry.at("state_checksum").get<std::string>() << ")\n";
   }
-  for (const std::string& name : wanted) {
-    std::cerr << "error: no case '" << name << "' in " << run_dir << "/report.json\n";
-    exit_code = kBadInput;
-  }
+  for (const std::string& name : wanted)
+    if (!found.count(name)) {
+      std::cerr << "error: no run of case '" << name << "' by the methods asked in " << run_dir << "/report.json\n";
+      exit_code = kBadInput;
+    }
   return exit_code;
 }
 
@@ -231,7 +242,7 @@ std::string baseline_markdown(const json& report) {
     std::string detail = b.contains("reason") ? b.at("reason").get<std::string>() : "";
     if (status == "changed" || status == "regressed") detail = moved_items(b);
     if (status == "identical") detail = "checksum " + b.at("state_checksum").get<std::string>();
-    o << "| " << c.at("name").get<std::string>() << " | " << (status == "regressed" ? "**regressed**" : status) << " | "
+    o << "| " << run_key(c) << " | " << (status == "regressed" ? "**regressed**" : status) << " | "
       << detail << " |\n";
   }
   return o.str();

@@ -31,10 +31,13 @@ json compare_with_baseline(const CaseSpec& spec, const json& entry, const std::s
 /// to kCaseFailed like a failed physics gate.
 void add_baseline_comparison(const CaseSpec& spec, const ValidateOptions& options, json& entry, int& exit_code);
 
-/// Writes baselines_dir/<case>.json for the cases of run_dir/report.json (only `names` if not
-/// empty). Cases that stopped with an error get none. Returns the exit code: 0, or 2 when a named
-/// case is not in the run or a case could not be blessed.
-int write_baselines(const std::string& run_dir, const std::string& baselines_dir, const std::vector<std::string>& names);
+/// Writes baselines_dir/<run id>.json (runner.hpp run_id: <case>.json for the case's own method,
+/// <case>.<method>.json for another) for the runs of run_dir/report.json: only the cases in
+/// `names` if not empty; only the methods in `methods` ({"all"}: every method; empty: each case's
+/// own). Runs that stopped with an error get none. Returns the exit code: 0, or 2 when a named
+/// case is not in the run or a run could not be blessed.
+int write_baselines(const std::string& run_dir, const std::string& baselines_dir, const std::vector<std::string>& names,
+                    const std::vector<std::string>& methods = {});
 
 /// The "Baselines" section of summary.md.
 std::string baseline_markdown(const json& report);

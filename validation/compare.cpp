@@ -20,9 +20,9 @@ json run_header(const std::string& dir, const json& report) {
           {"threads", report.at("threads")}, {"compiler", report.at("compiler")}, {"flags", report.value("flags", "")}};
 }
 
-const json* find_case(const json& report, const std::string& name) {
+const json* find_case(const json& report, const std::string& key) {
   for (const json& c : report.at("cases"))
-    if (c.at("name") == name) return &c;
+    if (run_key(c) == key) return &c;
   return nullptr;
 }
 
@@ -63,7 +63,7 @@ json case_delta(const json& entry_a, const std::string& dir_a, const json& entry
     return e.at("series").is_string() ? json((fs::absolute(dir) / e.at("series").get<std::string>()).lexically_normal().string())
                                       : json(nullptr);
   };
-  return {{"name", a.name}, {"status", {{"a", a.status}, {"b", b.status}}},
+  return {{"name", run_key(entry_a)}, {"status", {{"a", a.status}, {"b", b.status}}},
           {"state_checksum", {{"a", a.checksum}, {"b", b.checksum}}},
           {"identical", !a.checksum.empty() && a.checksum == b.checksum},
           {"metrics", metrics_delta(a, b)}, {"series", series_delta(a, b)},
@@ -81,12 +81,12 @@ json compare_document(const std::string& run_a, const std::string& run_b) {
   const json ra = read_json_file(run_a + "/report.json"), rb = read_json_file(run_b + "/report.json");
   json cases = json::array(), only_a = json::array(), only_b = json::array();
   for (const json& ea : ra.at("cases")) {
-    const json* eb = find_case(rb, ea.at("name"));
+    const json* eb = find_case(rb, run_key(ea));
     if (eb) cases.push_back(case_delta(ea, run_a, *eb, run_b));
-    else only_a.push_back(ea.at("name"));
+    else only_a.push_back(run_key(ea));
   }
   for (const json& eb : rb.at("cases"))
-    if (!find_case(ra, eb.at("name"))) only_b.push_back(eb.at("name"));
+    if (!find_case(ra, run_key(eb))) only_b.push_back(run_key(eb));
   return {{"format", "sandcastle compare"}, {"version", 1}, {"run_a", run_header(run_a, ra)}, {"run_b", run_header(run_b, rb)},
           {"cases", cases}, {"only_in_a", only_a}, {"only_in_b", only_b}};
 }

@@ -8,11 +8,9 @@ namespace sc {
 
 namespace {
 
-/// The case without its water blocks (the sand and its porous section stay) and without the
-/// "dry_twin" request (the twin runs once).
+/// The case without its water blocks (the sand and its porous section stay).
 CaseSpec without_water(const CaseSpec& spec) {
   CaseSpec dry = spec;
-  dry.validation.erase("dry_twin");
   std::erase_if(dry.blocks, [](const BlockSpec& b) { return b.fill == BlockFill::Water; });
   std::erase_if(dry.meshes, [](const MeshSpec& m) { return m.phase == Phase::Water; });
   return dry;

@@ -6,6 +6,7 @@
 
 #include "case/case_file.hpp"
 #include "observer.hpp"
+#include "run_record.hpp"
 
 namespace sc {
 
@@ -47,7 +48,7 @@ json printed_run(const std::string& file, const Erratum& e, const ValidateOption
 
 const json* find_entry(const std::vector<json>& entries, const std::string& name) {
   for (const json& e : entries)
-    if (e.at("name") == name) return &e;
+    if (run_key(e) == name) return &e;  // the run by the case's own method
   return nullptr;
 }
 

@@ -56,8 +56,20 @@ int run_command(const std::string& case_file, const std::string& out_dir, const 
 /// baselines. A case that failed to run gets no baseline and makes the exit code non-zero.
 int bless_command(const sc::ValidateOptions& options, const std::string& from) {
   const int run_code = from.empty() ? sc::validate(options) : sc::kSuccess;
-  const int bless_code = sc::write_baselines(from.empty() ? options.out_dir : from, sc::baselines_folder(options), options.cases);
+  const int bless_code = sc::write_baselines(from.empty() ? options.out_dir : from, sc::baselines_folder(options),
+                                             options.cases, options.methods);
   return run_code == sc::kBadInput || run_code == sc::kBlowUp ? run_code : bless_code;
+}
+
+/// --method of validate and baseline: a comma-separated list of known methods, or "all".
+void add_methods_option(CLI::App* app, std::vector<std::string>& methods) {
+  std::vector<std::string> allowed = sc::method_names();
+  allowed.push_back("all");
+  app->add_option("--method", methods,
+                  "run each case with these methods (comma-separated), each one it supports; \"all\": every "
+                  "method it supports (default: the case's own \"method\")")
+      ->delimiter(',')
+      ->check(CLI::IsMember(allowed));
 }
 
 }  // namespace
@@ -100,11 +112,14 @@ int main(int argc, char** argv) {
   val->add_option("--max-particles", vopt.max_particles, max_help)->check(CLI::PositiveNumber);
   val->add_flag("--errata", vopt.errata,
                 "also run each erratum's printed form on the cases it affects (errata-impact table)");
+  add_methods_option(val, vopt.methods);
 
   sc::ValidateOptions bopt;
   bopt.plots = false;
   std::string bless_from;
-  CLI::App* bl = app.add_subcommand("baseline", "Bless baselines: write reference/baselines/<case>.json from a run");
+  CLI::App* bl = app.add_subcommand("baseline",
+                                    "Bless baselines: write reference/baselines/<case>.json (<case>.<method>.json for "
+                                    "a method other than the case's own) from a run");
   bl->add_option("--tier", bopt.tier, "quick or full")->check(CLI::IsMember({"quick", "full"}));
   bl->add_option("--case", bopt.cases, "only these cases (repeatable)");
   bl->add_option("--out", bopt.out_dir, "folder of the run (default: reports/baseline-run under the root)");
@@ -112,6 +127,7 @@ int main(int argc, char** argv) {
   bl->add_option("--baselines-dir", bopt.baselines_dir, "folder of baselines (default: reference/baselines)");
   bl->add_option("--from", bless_from, "bless this finished validation run instead of running the cases")
       ->check(CLI::ExistingDirectory);
+  add_methods_option(bl, bopt.methods);
 
   std::string compare_a, compare_b, compare_out;
   bool compare_plots = true;

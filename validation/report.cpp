@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "baseline.hpp"
+#include "run_record.hpp"
 
 namespace sc {
 
@@ -110,7 +111,7 @@ std::string summary_markdown(const json& report) {
     if (c.contains("message")) metrics += (metrics.empty() ? "" : "; ") + c.at("message").get<std::string>();
     char wall[32];
     std::snprintf(wall, sizeof wall, "%.1f", c.at("wall_seconds").get<double>());
-    o << "| " << c.at("name").get<std::string>() << " | " << c.at("tier").get<std::string>() << " | "
+    o << "| " << run_key(c) << " | " << c.at("tier").get<std::string>() << " | "
       << c.at("status").get<std::string>() << " | " << c.at("particles") << " | " << c.at("steps") << " | " << wall
       << " | " << metrics << " |\n";
   }

@@ -63,6 +63,8 @@ std::vector<Series> series_from_json(const json& series_array, const std::string
   return out;
 }
 
+std::string run_key(const json& entry) { return entry.value("run_id", entry.at("name").get<std::string>()); }
+
 RunRecord record_from_entry(const json& entry, const std::string& run_dir) {
   RunRecord r;
   r.name = entry.at("name");

@@ -21,6 +21,10 @@ struct RunRecord {
 /// The record of a report.json case entry; its series come from run_dir/<entry.series>.
 RunRecord record_from_entry(const json& entry, const std::string& run_dir);
 
+/// The key of a report.json entry: its "run_id" (<case>, or <case>.<method> for a method other
+/// than the case's own; runner.hpp run_id), or its "name" in reports written before methods.
+std::string run_key(const json& entry);
+
 /// The series of a series.json document (or of a baseline file, which stores them the same way).
 std::vector<Series> series_from_json(const json& series_array, const std::string& file);
 

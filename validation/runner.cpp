@@ -114,9 +114,13 @@ void check_run(const CaseSpec& spec, const RunSettings& settings) {
 
 }  // namespace
 
-RunResult run_simulation(const CaseSpec& spec, double dx, const RunSettings& settings) {
+RunResult run_single(const CaseSpec& spec, double dx, const RunSettings& settings) {
   check_run(spec, settings);
-  RunResult r = spec.dimension == 2 ? run_in_dimension<2>(spec, dx, settings) : run_in_dimension<3>(spec, dx, settings);
+  return spec.dimension == 2 ? run_in_dimension<2>(spec, dx, settings) : run_in_dimension<3>(spec, dx, settings);
+}
+
+RunResult run_simulation(const CaseSpec& spec, double dx, const RunSettings& settings) {
+  RunResult r = run_single(spec, dx, settings);
   if (spec.adaptive && r.status != "error") add_adaptive_results(spec, dx, settings, r);
   if (r.status != "error") add_dry_twin_results(spec, dx, settings, r);
   return r;

@@ -40,9 +40,16 @@ struct RunSettings {
   std::string resume_from;      ///< checkpoint to continue from (empty: start at t = 0)
 };
 
-/// Simulates `spec` at spacing dx with its observer. Never throws for a blow-up (status error,
-/// exit code 3, last good state written to out_dir/last_good.vtu and last_good.ckpt); throws
-/// InputError for bad input (before anything is written).
+/// One simulation of `spec` at spacing dx by its method, with its observer: no twin runs. Never
+/// throws for a blow-up (status error, exit code 3, last good state written to
+/// out_dir/last_good.vtu and last_good.ckpt); throws InputError for bad input (before anything is
+/// written).
+RunResult run_single(const CaseSpec& spec, double dx, const RunSettings& settings);
+
+/// What a case asks of a run: run_single, then the comparisons with the twin runs its validation
+/// block requests (the adaptive run's "uniform_twin", validation/adaptive_report.hpp; the
+/// "dry_twin", validation/dry_twin_report.hpp). Each twin is itself a run_single, so a twin never
+/// starts twins of its own. Errors as run_single.
 RunResult run_simulation(const CaseSpec& spec, double dx, const RunSettings& settings);
 
 /// Writes series.json for a case (its series and plot descriptions).
@@ -57,7 +64,18 @@ struct ValidateOptions {
   bool plots = true;
   double max_particles = kDefaultMaxParticles;     ///< estimated particles above which a run is refused (--max-particles)
   bool errata = false;             ///< also run each erratum's printed form on its cases (--errata; validation/errata.hpp)
+  /// Methods to run each case with (--method), each one the case supports, in this order; empty:
+  /// the case's own "method"; {"all"}: its own method, then every one under its "methods".
+  std::vector<std::string> methods;
 };
+
+/// The methods `options.methods` asks of a case that it supports, in the order asked (its own
+/// method when none is asked). Empty when the case supports none of them.
+std::vector<std::string> methods_to_run(const CaseSpec& spec, const ValidateOptions& options);
+
+/// Where a case's run by `method` lives: "<case>" for the case's own method, "<case>.<method>"
+/// for another (its output folder under the run, and its baseline file's name).
+std::string run_id(const CaseSpec& spec, const std::string& method);
 
 /// The validation suite; returns the exit code (0 only if every case passed).
 int validate(const ValidateOptions& options);

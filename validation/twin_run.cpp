@@ -8,7 +8,7 @@ bool run_twin(const CaseSpec& twin, double dx, const RunSettings& settings, cons
   twin_settings.out_dir = settings.out_dir + "/" + subdir;
   twin_settings.end_time = settings.end_time;
   twin_settings.label = settings.label + " (" + what + ")";
-  twin_result = run_simulation(twin, dx, twin_settings);
+  twin_result = run_single(twin, dx, twin_settings);
   if (twin_result.status != "error") return true;
   run.status = "error";
   run.exit_code = twin_result.exit_code;

@@ -9,7 +9,8 @@
 
 namespace sc {
 
-/// Runs `twin` at dx into <settings.out_dir>/<subdir>. On a blow-up or error of the twin, marks
+/// Runs `twin` at dx into <settings.out_dir>/<subdir> (run_single: the twin starts no twins of its
+/// own). On a blow-up or error of the twin, marks
 /// `run` as an error (message prefixed with `what`) and returns false.
 bool run_twin(const CaseSpec& twin, double dx, const RunSettings& settings, const std::string& subdir,
               const std::string& what, RunResult& run, RunResult& twin_result);

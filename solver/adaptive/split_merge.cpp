@@ -119,18 +119,13 @@ void check_params(const AdaptiveParams& p) {
 }
 
 template <int D>
-double particle_size(double mass, double rest_density) {
-  return std::pow(mass / rest_density, 1.0 / D);
-}
-
-template <int D>
 int level_of(double mass, double rest_density, const AdaptiveParams& params) {
   return static_cast<int>(std::lround(std::log2(mass / rest_density / params.finest_volume)));
 }
 
 template <int D>
 Decision decide(double elfs, double mass, double rest_density, const AdaptiveParams& params) {
-  const double r = particle_size<D>(mass, rest_density);
+  const double r = particle_size<D>(mass / rest_density);
   const int level = level_of<D>(mass, rest_density, params);
   if (elfs < params.alpha * r && level > params.min_level) return Decision::Split;
   if (elfs > params.beta * r && level < params.max_level) return Decision::Merge;
@@ -178,7 +173,6 @@ double merge_pair(const ParticleSet<D>& from, std::size_t i, std::size_t j, Part
 
 #define SC_ADAPTIVE_INSTANTIATE(D)                                                              \
   template void check_params<D>(const AdaptiveParams&);                                         \
-  template double particle_size<D>(double, double);                                             \
   template int level_of<D>(double, double, const AdaptiveParams&);                              \
   template Decision decide<D>(double, double, double, const AdaptiveParams&);                   \
   template Vec<D> split_direction<D>(const Vec<D>&, double, std::span<const Vec<D>>);          \

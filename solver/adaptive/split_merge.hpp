@@ -51,9 +51,6 @@ void check_params(const AdaptiveParams& params);
 
 enum class Decision { Keep, Split, Merge };
 
-/// Particle size r = (m / rho0)^(1/D) [m].
-template <int D>
-double particle_size(double mass, double rest_density);
 /// Level of a particle of volume m / rho0 relative to params.finest_volume.
 template <int D>
 int level_of(double mass, double rest_density, const AdaptiveParams& params);
@@ -110,7 +107,7 @@ bool mergeable(const ParticleSet<D>& ps, std::size_t i, std::size_t j,
   if (ps.phase[i] != ps.phase[j]) return false;
   if (level_of<D>(ps.m[i], ps.rho0[i], params) != level_of<D>(ps.m[j], ps.rho0[j], params))
     return false;
-  const double reach = params.merge_distance * particle_size<D>(ps.m[i], ps.rho0[i]);
+  const double reach = params.merge_distance * particle_size<D>(ps.m[i] / ps.rho0[i]);
   return (ps.x[i] - ps.x[j]).norm() < reach;
 }
 
@@ -120,7 +117,7 @@ void queue_split(ParticleSet<D>& ps, std::size_t i, const AdaptiveParams& params
   typename ParticleSet<D>::VecArray others;
   for (auto j : neighbours(i))
     if (static_cast<std::size_t>(j) != i) others.push_back(ps.x[static_cast<std::size_t>(j)]);
-  const double delta = params.split_offset * particle_size<D>(0.5 * ps.m[i], ps.rho0[i]);
+  const double delta = params.split_offset * particle_size<D>(0.5 * ps.m[i] / ps.rho0[i]);
   const Vec<D> e = split_direction<D>(ps.x[i], delta, std::span<const Vec<D>>(others));
   split_particle<D>(ps, i, e, delta, ps.additions());
   ps.queue_remove(i);

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "porous/porous_setup.hpp"
+#include "sand/sand_section.hpp"
+#include "water/water_section.hpp"
 
 namespace sc {
 
@@ -12,43 +14,6 @@ namespace {
 void check_box(JsonObject& o, const std::vector<double>& lo, const std::vector<double>& hi) {
   for (std::size_t d = 0; d < lo.size(); ++d)
     if (!(hi[d] > lo[d])) o.fail("max", "must exceed min in every coordinate (axis " + std::to_string(d) + ")");
-}
-
-void read_water(JsonObject o, CaseSpec& c) {
-  c.water.rest_density = o.positive("rest_density");
-  c.water.viscosity = o.non_negative("viscosity", 0.0);
-  c.artificial_viscosity = o.non_negative("artificial_viscosity", 0.0);
-  if (o.has("viscosity") && o.has("artificial_viscosity"))
-    o.fail("artificial_viscosity", "give either viscosity (Pa s) or artificial_viscosity (alpha), not both");
-  c.water.surface_tension = o.non_negative("surface_tension", 0.0);
-  c.water.density_kernel = o.one_of("density_kernel", {"spiky", "poly6"}, "spiky") == "spiky"
-                               ? kernel::DensityKernel::Spiky : kernel::DensityKernel::Poly6;
-  c.water.gradient_correction = o.boolean("gradient_correction", true);
-  c.water.mueller_half_pressure = o.boolean("mueller_half_pressure", false);
-  const std::string eos = o.one_of("equation_of_state", {"tait", "linear"}, "tait");
-  c.eos.kind = eos == "tait" ? EquationOfState::Kind::Tait : EquationOfState::Kind::Linear;
-  c.eos.sound_speed = o.positive("sound_speed");
-  c.eos.gamma = o.in_range("gamma", 1.0, 10.0, false, 7.0);
-  c.eos.clamp_negative = o.boolean("clamp_negative_pressure", true);
-  o.finish();
-}
-
-void read_sand(JsonObject o, CaseSpec& c) {
-  SandParams& s = c.sand;
-  s.rest_density = o.positive("rest_density");
-  s.friction_angle_deg = o.in_range("friction_angle", 0.0, 90.0, true);
-  s.cohesion = o.non_negative("cohesion", 0.0);
-  s.wet_cohesion_loss = o.boolean("wet_cohesion_loss", true);
-  s.viscosity = o.non_negative("viscosity", 0.0);
-  s.wall_friction = o.has("wall_friction") ? o.non_negative("wall_friction", 0.0) : -1.0;
-  s.contact_damping = o.non_negative("contact_damping", 0.5);
-  s.rigid_clusters = o.boolean("rigid_clusters", true);
-  s.rigid_length = o.one_of("rigid_stress_length", {"spacing", "support"}, "spacing") == "spacing"
-                       ? RigidStressLength::Spacing : RigidStressLength::Support;
-  s.yield_surface = o.one_of("yield_surface", {"flow_consistent", "zhu_bridson"}, "flow_consistent") == "flow_consistent"
-                        ? YieldSurface::FlowConsistent : YieldSurface::ZhuBridson;
-  o.finish();
-  c.has_sand = true;
 }
 
 void read_tank(JsonObject o, CaseSpec& c) {
@@ -132,8 +97,14 @@ CaseSpec load_case(const json& doc, const std::string& path) {
   read_time(o.object("time"), c);
   c.support_ratio = o.in_range("support_ratio", 1.0, 4.0, false, 2.0);
   c.density_window = o.non_negative("density_window", 0.0);
-  read_water(o.object("water"), c);
-  if (o.has("sand")) read_sand(o.object("sand"), c);
+  const WaterSection water = read_water(o.object("water"));
+  c.water = water.params;
+  c.eos = water.eos;
+  c.artificial_viscosity = water.artificial_viscosity;
+  if (o.has("sand")) {
+    c.sand = read_sand(o.object("sand"));
+    c.has_sand = true;
+  }
   if (o.has("porous")) c.porous = read_porous(o.object("porous"), c.water.rest_density);
   if (o.has("adaptive")) {
     c.adaptive = read_adaptivity(o.object("adaptive"), c.dimension);

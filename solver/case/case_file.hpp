@@ -1,5 +1,8 @@
 // The case file (cases/<name>/case.json): scene, parameters, validation and tiers.
-// The format is documented in cases/README.md; every field is checked on load.
+// The format is documented in cases/README.md; every field is checked on load. Each physics folder
+// owns its section's parameters, reader and derived values (water/water_section, sand/sand_params,
+// porous/porous_setup, adaptive/adaptivity); this file reads the case-level keys (domain, time,
+// blocks, meshes, tank, methods, validation, tiers) and calls the section readers.
 #pragma once
 #include <map>
 #include <optional>

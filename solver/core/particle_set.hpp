@@ -8,6 +8,7 @@
 // `compact()` at its end: removals in index order, then additions in the order they were queued,
 // so the result does not depend on thread scheduling as long as additions are queued serially.
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <string_view>
 #include <vector>
@@ -15,6 +16,14 @@
 #include "core/types.hpp"
 
 namespace sc {
+
+/// The size of a particle of volume `volume` [m]: the edge V^(1/D) of the cube (square in 2-D) it
+/// fills in a lattice. The one name for a size derived from a volume: adaptive sampling's split and
+/// merge decisions and levels (rest volume m/ρ0) and porous flow's transfer length (volume m/ρ).
+template <int D>
+double particle_size(double volume) {
+  return std::pow(volume, 1.0 / D);
+}
 
 template <int D>
 class ParticleSet {

@@ -23,7 +23,7 @@ bool porous_at(const ParticleSet<D>& ps, std::size_t i) { return is_porous_phase
 
 template <int D>
 double spacing_of(const ParticleSet<D>& ps, std::size_t i, const PorousParams& p) {
-  return ps.phase_of(i) == Phase::Boundary ? p.spacing : std::pow(ps.volume(i), 1.0 / D);
+  return ps.phase_of(i) == Phase::Boundary ? p.spacing : particle_size<D>(ps.volume(i));
 }
 
 /// Which particles are porous (porous_at), from the porosity at the start of the step (fill_slot
