@@ -37,9 +37,9 @@ struct TwinRequest {
 /// The value of metric `name` for the ratio against the twin: the run's own, or with an ensemble of
 /// n > 1 the median over the run and n − 1 copies whose split offset is nudged by k·1e-5
 /// (relative, k = 1 … n − 1). A metric of a resting arrangement left by splits and merges is a
-/// chaotic function of round-off: split_merge's pressure L2 after its cycles moved from 1.5x to
-/// 2.5x the uniform twin's with split_offset 0.49999 / 0.50001 or a 0.5 s longer relaxation
-/// (measured), so one run cannot decide a 2x gate; the median of a few can. The ensemble's
+/// chaotic function of round-off: a nudge of the split offset in its fifth digit, or a slightly
+/// longer relaxation, can move split_merge's pressure L2 by a large factor, so one run cannot decide
+/// a ratio gate; the median of a few can. The ensemble's
 /// spread is reported as <name>_ensemble_min / _max.
 double ensemble_value(const CaseSpec& spec, double dx, const RunSettings& settings, int n, const std::string& name,
                       std::vector<ObserverResult>& copies, RunResult& run) {

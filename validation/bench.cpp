@@ -33,6 +33,15 @@ const std::map<std::string, ThesisTiming> thesis_timings = {
     {"thesis_bunny_winnie", {21456, 28116, 9.87}},
     {"thesis_winnie_box", {31107, 40858, 15.74}},
 };
+/// Zhu & Bridson 2005, §6 (a 2 GHz PowerPC G5): seconds per frame of 1/30 s for the collapsing
+/// sand column of 269,322 particles on a 100³ grid, the scene `flip_zb05` reproduces.
+struct PaperTiming {
+  long particles;
+  double seconds_per_frame;
+};
+const std::map<std::string, PaperTiming> paper_timings = {{"flip_zb05", {269322, 6.0}}};
+constexpr double kFrameSeconds = 1.0 / 30.0;  ///< a frame of simulated time (30 frames per second)
+
 const std::vector<std::string> default_scenes = {"thesis_duck",         "thesis_bunny_armadillos", "thesis_bunny_winnie",
                                                  "thesis_winnie_box",   "bench_water_34k",         "bench_water_104k"};
 
@@ -59,6 +68,7 @@ json bench_scene(const CaseSpec& spec, double dx, long steps) {
   sim.reset_stage_times();
   std::vector<double> ms;
   Progress progress(spec.name, steps * spec.dt_max);
+  const double t_start = sim.time();
   const auto start = std::chrono::steady_clock::now();
   for (long k = 0; k < steps; ++k) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -68,14 +78,19 @@ json bench_scene(const CaseSpec& spec, double dx, long steps) {
   }
   progress.done(sim.time(), sim.steps());
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  json stages = json::object();
+  json stages = json::object(), counts = json::object();
   double staged = 0.0;
   for (const StageTime& s : sim.stage_times()) {
     const double per_step = 1e3 * s.seconds / steps;
     stages[s.name] = per_step;
     staged += per_step;
+    if (s.count > 0) counts[s.name] = static_cast<double>(s.count) / steps;
   }
   stages["other"] = std::max(0.0, 1e3 * total / steps - staged);
+  const double simulated = sim.time() - t_start;
+  entry["simulated_seconds"] = simulated;
+  entry["seconds_per_frame"] = total / simulated * kFrameSeconds;  // frames of 1/30 s of simulated time
+  if (!counts.empty()) entry["stage_counts_per_step"] = counts;
   entry["steps"] = steps;
   entry["ms_per_step"] = {{"median", quantile(ms, 0.5)}, {"q1", quantile(ms, 0.25)}, {"q3", quantile(ms, 0.75)},
                           {"min", quantile(ms, 0.0)},    {"max", quantile(ms, 1.0)},  {"mean", 1e3 * total / steps}};
@@ -114,6 +129,13 @@ void add_thesis_comparison(json& entry) {
   entry["speedup_vs_thesis"] = 1e3 * t.seconds_per_step / median;
 }
 
+void add_paper_comparison(json& entry) {
+  const auto it = paper_timings.find(entry.at("scene").get<std::string>());
+  if (it == paper_timings.end()) return;
+  entry["paper"] = {{"particles", it->second.particles}, {"seconds_per_frame", it->second.seconds_per_frame}};
+  entry["speedup_vs_paper"] = it->second.seconds_per_frame / entry.at("seconds_per_frame").get<double>();
+}
+
 void print_table(const json& entries) {
   std::printf("%-24s %8s %8s %8s %4s %10s %9s %9s  %s\n", "scene", "water", "sand", "boundary", "thr", "ms/step", "q1-q3",
               "speedup", "stages (ms/step)");
@@ -130,6 +152,14 @@ void print_table(const json& entries) {
     std::printf("%-24s %8ld %8ld %8ld %4d %10.1f %9s %9s  %s\n", e["scene"].get<std::string>().c_str(), p["water"].get<long>(),
                 p["sand"].get<long>(), p["boundary"].get<long>(), e["threads"].get<int>(), t["median"].get<double>(), spread,
                 speedup.c_str(), stages.c_str());
+    if (e.contains("speedup_vs_paper")) {
+      std::string counted;
+      for (const auto& [name, v] : e["stage_counts_per_step"].items())
+        counted += "  " + name + " " + format_number(std::round(10.0 * v.get<double>()) / 10.0) + " iterations/step";
+      std::printf("%-24s %.3f s per frame of 1/30 s (%ld steps over %.4f s), paper %.1f s: %.1fx faster%s\n", "",
+                  e["seconds_per_frame"].get<double>(), e["steps"].get<long>(), e["simulated_seconds"].get<double>(),
+                  e["paper"]["seconds_per_frame"].get<double>(), e["speedup_vs_paper"].get<double>(), counted.c_str());
+    }
     if (e.contains("adaptive_speedup"))
       std::printf("%-24s uniform %.1f ms/step (mean) vs adaptive %.1f: %.2fx faster; %.2fx fewer moving particles at the end\n", "",
                   e["uniform"]["ms_per_step"]["mean"].get<double>(), t["mean"].get<double>(), e["adaptive_speedup"].get<double>(),
@@ -157,6 +187,7 @@ int bench(const BenchOptions& opt) {
       json entry = bench_any(spec, dx, steps);
       entry["threads"] = omp_get_max_threads();
       add_thesis_comparison(entry);
+      add_paper_comparison(entry);
       if (spec.adaptive) add_uniform_comparison(spec, dx, steps, entry);
       entries.push_back(entry);
     } catch (const BlowUpError& e) {

@@ -18,7 +18,9 @@ struct BenchOptions {
 
 /// Runs every scene at the finest spacing of its full tier and writes out_dir/bench.json: particle
 /// counts, threads, ms/step (median, quartiles, min, max over the steps), the per-stage times
-/// (StageTimers) and the speed-up against the thesis' s/step. Prints a table. Returns the exit code.
+/// (StageTimers) and counts (FLIP's CG iterations), seconds per frame of 1/30 s of simulated time,
+/// and the speed-up against the thesis' s/step (its four scenes) or the paper's s/frame
+/// (`flip_zb05`, Zhu & Bridson 2005). Prints a table. Returns the exit code.
 int bench(const BenchOptions& options);
 
 }  // namespace sc

@@ -84,7 +84,15 @@ FlipMethod<D>::FlipMethod(flip::FlipSolver<D> solver) : solver_(std::move(solver
 template <int D>
 double FlipMethod<D>::step() {
   last_good_ = solver_.particles();
-  return solver_.step();
+  const double dt = solver_.step();
+  projection_iterations_ += solver_.projection_stats().iterations;
+  return dt;
+}
+
+template <int D>
+void FlipMethod<D>::reset_stage_times() {
+  solver_.timers().reset();
+  projection_iterations_ = 0;
 }
 
 template <int D>
@@ -126,8 +134,11 @@ std::string FlipMethod<D>::checksum() const {
 template <int D>
 std::vector<StageTime> FlipMethod<D>::stage_times() const {
   std::vector<StageTime> out;
-  for (std::size_t s = 0; s < flip::flip_stage_names.size(); ++s)
-    out.push_back({std::string(flip::flip_stage_names[s]), solver_.timers().seconds(static_cast<flip::FlipStage>(s))});
+  for (std::size_t s = 0; s < flip::flip_stage_names.size(); ++s) {
+    const auto stage = static_cast<flip::FlipStage>(s);
+    out.push_back({std::string(flip::flip_stage_names[s]), solver_.timers().seconds(stage),
+                   stage == flip::FlipStage::Projection ? projection_iterations_ : 0});
+  }
   return out;
 }
 

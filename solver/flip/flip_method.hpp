@@ -53,8 +53,9 @@ class FlipMethod final : public Method<D> {
   /// particle's phase (the grid is incompressible); the support of the transfer kernel (Δx).
   ParticleView<D> particles() const override;
   std::string checksum() const override;
+  /// The solver's stage times; the projection's count is its CG iterations.
   std::vector<StageTime> stage_times() const override;
-  void reset_stage_times() override { solver_.timers().reset(); }
+  void reset_stage_times() override;
   std::string vtu_frame() const override;
   std::string last_good_frame() const override;
   bool writes_checkpoints() const override { return false; }
@@ -67,6 +68,7 @@ class FlipMethod final : public Method<D> {
 
   flip::FlipSolver<D> solver_;
   flip::FlipParticles<D> last_good_;
+  long projection_iterations_ = 0;  // CG iterations since the last reset_stage_times
   mutable std::vector<double> pressure_, density_, support_;  // fields of the last particles() call
 };
 

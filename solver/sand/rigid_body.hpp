@@ -158,7 +158,7 @@ MotionSums<D> motion_sums(std::span<const std::size_t> members, std::span<const 
 }
 
 /// Rigid motion of a cluster after one step [thesis eq. 15], [thesis eq. 16], [thesis eq. 18]
-/// (corrected form of EQUATIONS.md 15-18), from its mass M, centre and motion_sums:
+/// (corrected form, docs/equations.md eqs 15-18), from its mass M, centre and motion_sums:
 ///   P = Σ m_j v_j + F_cluster Δt,  L = Σ m_j r'_j × v_j + τ_cluster Δt,  v_cm = P/M,  ω = I⁻¹ L,
 /// from the velocities and forces at the start of the step. Errata: eqs 15-16 drop the gyroscopic
 /// term ω × Iω and the time dependence of I; updating L (not ω) here, and turning the body at that L

@@ -36,7 +36,7 @@ template <int D>
 std::vector<StageTime> SphMethod<D>::stage_times() const {
   std::vector<StageTime> out;
   for (std::size_t s = 0; s < stage_names.size(); ++s)
-    out.push_back({std::string(stage_names[s]), sim_.timers().seconds(static_cast<Stage>(s))});
+    out.push_back({std::string(stage_names[s]), sim_.timers().seconds(static_cast<Stage>(s)), 0});
   return out;
 }
 
