@@ -121,6 +121,19 @@ BOOST_AUTO_TEST_CASE(one_case_by_two_methods_side_by_side_with_baselines_per_met
   BOOST_TEST(again.at("methods").at(0).at("methods") == json::array({"flip", "sph"}));
 }
 
+BOOST_AUTO_TEST_CASE(scene_observer_follows_the_particles_of_a_method_without_ids) {
+  // FLIP keeps its particles in one order and gives no ids: the scene observer follows them by index.
+  json c = tiny_tank();
+  c["sand"] = {{"rest_density", 2650.0}, {"friction_angle", 30.0}};
+  c["blocks"] = json::parse(R"([{"phase": "sand", "min": [0.0, 0.0], "max": [0.04, 0.04]}])");
+  c["validation"] = {{"observer", "scene"}, {"metrics", {{"escaped", {{"max", 0}}}}}};
+  const Folder f("methods_scene");
+  std::ofstream(f.root / "cases" / "tank" / "case.json") << c.dump(1);
+  BOOST_TEST(validate(f.options("run", {"flip"})) == kSuccess);
+  const json report = read_json_file((f.root / "run" / "report.json").string());
+  BOOST_TEST(entry_of(report, "tank.flip").at("metrics").at("sand_displaced_fraction_dry").at("value").get<double>() < 1.0);
+}
+
 BOOST_AUTO_TEST_CASE(a_named_case_that_supports_none_of_the_methods_is_bad_input) {
   const Folder f("methods_none");
   ValidateOptions o = f.options("run", {"dem"});

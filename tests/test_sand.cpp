@@ -310,6 +310,14 @@ BOOST_AUTO_TEST_CASE(inertia_eq_17_lattice_identity) {
   BOOST_TEST((I - I.transpose()).norm() < 1e-12 * I.norm());
   BOOST_TEST(std::abs(I(0, 1)) < 1e-12 * I.norm());
   BOOST_TEST(Eigen::SelfAdjointEigenSolver<Mat<3>>(I).eigenvalues().minCoeff() > 0.0);
+
+  // The printed form (erratum switch sand.inertia_tensor = "printed"): I_yy = Σ m (y² + z²), the
+  // same as I_xx for this box, every other entry as corrected.
+  const Mat<3> P = inertia_tensor<3>(members, m, x, c, InertiaForm::Printed);
+  BOOST_TEST(P(1, 1) == M * (b * b + a * a) / 12.0 * (1.0 - 1.0 / (n * n)), tt::tolerance(1e-12));
+  Mat<3> rest = P - I;
+  rest(1, 1) = 0.0;
+  BOOST_TEST(rest.norm() == 0.0);
 }
 
 BOOST_AUTO_TEST_CASE(angular_acceleration_eqs_15_16_and_singular_inertia) {

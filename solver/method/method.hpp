@@ -27,7 +27,9 @@ struct ParticleView {
   std::span<const Vec<D>> v;              ///< velocity [m/s]
   std::span<const double> m;              ///< mass the method moves [kg]
   std::span<const std::uint8_t> phase;    ///< Phase as an integer
-  std::span<const std::int64_t> id;       ///< stable identity (optional)
+  /// Stable identity (optional: a method that leaves it empty never reorders, adds or removes
+  /// particles, so the index is the identity; see identity()).
+  std::span<const std::int64_t> id;
   std::span<const double> pressure;       ///< [Pa] (optional)
   std::span<const double> density;        ///< [kg/m^3] (optional)
   std::span<const double> support;        ///< radius within which the particle interacts [m] (optional)
@@ -38,6 +40,8 @@ struct ParticleView {
   std::span<const double> pore_water_pressure;  ///< pressure of the water in the pores [Pa] (optional)
 
   std::size_t size() const { return x.size(); }
+  /// The identity of particle i: its id, or its index for a method without ids.
+  std::int64_t identity(std::size_t i) const { return id.empty() ? static_cast<std::int64_t>(i) : id[i]; }
   Phase phase_of(std::size_t i) const { return static_cast<Phase>(phase[i]); }
   bool moves(std::size_t i) const { return phase_of(i) != Phase::Boundary; }
   /// Water particle i holds besides its mass: in its pores and on its way out of them [kg].

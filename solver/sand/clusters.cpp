@@ -43,7 +43,8 @@ Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb) {
 }
 
 template <int D>
-std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt) {
+std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt,
+                                              InertiaForm form) {
   // The members of every cluster in fixed chunks (the same at any number of threads), summed chunk
   // by chunk in parallel and added in chunk order, so a large cluster is shared among the threads.
   struct Chunk {
@@ -85,7 +86,7 @@ std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Cl
     }
 #pragma omp for schedule(dynamic, 16)
     for (std::int64_t k = 0; k < nk; ++k)
-      sums[k] = motion_sums<D>(members_of(chunks[k]), ps.m, ps.x, ps.v, ps.force, out[chunks[k].cluster].centre);
+      sums[k] = motion_sums<D>(members_of(chunks[k]), ps.m, ps.x, ps.v, ps.force, out[chunks[k].cluster].centre, form);
 #pragma omp for schedule(static)
     for (std::int64_t c = 0; c < nc; ++c)
       out[c] = motion_from_sums<D>(out[c].mass, out[c].centre, add_chunks(sums, c), dt, clusters[c].size() > 1);
@@ -116,8 +117,8 @@ void move_clusters(ParticleSet<D>& ps, const Clusters& clusters, const std::vect
 
 template Clusters find_clusters<2>(ParticleSet<2>&, const NeighbourGrid<2>&);
 template Clusters find_clusters<3>(ParticleSet<3>&, const NeighbourGrid<3>&);
-template std::vector<ClusterMotion<2>> cluster_motions<2>(const ParticleSet<2>&, const Clusters&, double);
-template std::vector<ClusterMotion<3>> cluster_motions<3>(const ParticleSet<3>&, const Clusters&, double);
+template std::vector<ClusterMotion<2>> cluster_motions<2>(const ParticleSet<2>&, const Clusters&, double, InertiaForm);
+template std::vector<ClusterMotion<3>> cluster_motions<3>(const ParticleSet<3>&, const Clusters&, double, InertiaForm);
 template void move_clusters<2>(ParticleSet<2>&, const Clusters&, const std::vector<ClusterMotion<2>>&, double, double);
 template void move_clusters<3>(ParticleSet<3>&, const Clusters&, const std::vector<ClusterMotion<3>>&, double, double);
 

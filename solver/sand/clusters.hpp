@@ -20,9 +20,10 @@ template <int D>
 Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb);
 
 /// Rigid motion of every cluster for a step dt (rigid_motion: eqs 13-18) from the velocities and
-/// forces at the start of the step.
+/// forces at the start of the step, with the inertia tensor of eq 17 in the given form.
 template <int D>
-std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt);
+std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt,
+                                              InertiaForm form = InertiaForm::Corrected);
 
 /// Moves the members of every cluster rigidly by one step: x ← r_cm + Δt v_cm + R (x − r_cm), then
 /// v ← damping (v_cm + ω' × (x − r_cm_new)), eq 18 in its corrected form, with R and ω' the

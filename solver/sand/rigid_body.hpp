@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "sand/sand_params.hpp"
 
 namespace sc {
 
@@ -94,15 +95,20 @@ AngVec<D> cluster_torque(std::span<const std::size_t> members, const VecArrayOf<
 /// Inertia tensor about the centre [thesis eq. 17] (Baraff 2001): I = Σ m_j (|r'_j|² 𝟙 − r'_j r'_jᵀ),
 /// r'_j = r_j − r_cm; in 2-D the single entry I_zz = Σ m_j |r'_j|². Erratum 17: the thesis prints
 /// the second diagonal entry as m(r'_y² + r'_z²); it is m(r'_x² + r'_z²). The identity/outer-product
-/// form used here cannot carry that typo.
+/// form used by default cannot carry that typo; InertiaForm::Printed puts it back (3-D), so the
+/// errata-impact table can show what it does (sand.inertia_tensor = "printed").
 template <int D>
 AngMat<D> inertia_tensor(std::span<const std::size_t> members, std::span<const double> m, const VecArrayOf<D>& x,
-                         const Vec<D>& centre) {
+                         const Vec<D>& centre, InertiaForm form = InertiaForm::Corrected) {
   AngMat<D> I = AngMat<D>::Zero();
   for (const auto j : members) {
     const Vec<D> r = x[j] - centre;
-    if constexpr (D == 3) I += m[j] * (r.squaredNorm() * Mat<3>::Identity() - r * r.transpose());
-    else I(0, 0) += m[j] * r.squaredNorm();
+    if constexpr (D == 3) {
+      I += m[j] * (r.squaredNorm() * Mat<3>::Identity() - r * r.transpose());
+      if (form == InertiaForm::Printed) I(1, 1) += m[j] * (r.y() * r.y() - r.x() * r.x());  // y² in place of x²
+    } else {
+      I(0, 0) += m[j] * r.squaredNorm();
+    }
   }
   return I;
 }
@@ -142,10 +148,11 @@ struct MotionSums {
   }
 };
 
-/// MotionSums of the members about `centre`.
+/// MotionSums of the members about `centre` (the inertia in the given form of eq 17).
 template <int D>
 MotionSums<D> motion_sums(std::span<const std::size_t> members, std::span<const double> m, const VecArrayOf<D>& x,
-                          const VecArrayOf<D>& v, const VecArrayOf<D>& force, const Vec<D>& centre) {
+                          const VecArrayOf<D>& v, const VecArrayOf<D>& force, const Vec<D>& centre,
+                          InertiaForm form = InertiaForm::Corrected) {
   MotionSums<D> s;
   for (const auto j : members) {
     s.momentum += m[j] * v[j];
@@ -153,7 +160,7 @@ MotionSums<D> motion_sums(std::span<const std::size_t> members, std::span<const 
   }
   s.force = cluster_force<D>(members, force);
   s.torque = cluster_torque<D>(members, x, centre, force);
-  s.inertia = inertia_tensor<D>(members, m, x, centre);
+  s.inertia = inertia_tensor<D>(members, m, x, centre, form);
   return s;
 }
 

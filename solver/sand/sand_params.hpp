@@ -18,6 +18,12 @@ enum class YieldSurface {
   ZhuBridson,      ///< eq 10 as printed (Zhu & Bridson 2005): √3 σ̄ < sin φ σ_m + c (switch)
 };
 
+/// Which inertia tensor of a rigid cluster [thesis eq. 17] the cluster motion uses (3-D only).
+enum class InertiaForm {
+  Corrected,  ///< I = Σ m (|r'|² 𝟙 − r' r'ᵀ) (default)
+  Printed,    ///< as printed (erratum 17): the second diagonal entry m(r'_y² + r'_z²) (switch)
+};
+
 struct SandParams {
   double rest_density = 2650.0;      ///< ρ0 of sand particles [kg/m^3] (bulk density)
   double friction_angle_deg = 30.0;  ///< φ [deg]; μ_f = sin φ in eqs 8 and 10
@@ -29,6 +35,7 @@ struct SandParams {
   bool rigid_clusters = true;        ///< project non-yielding sand onto rigid motions (eqs 12b-18)
   RigidStressLength rigid_length = RigidStressLength::Spacing;
   YieldSurface yield_surface = YieldSurface::FlowConsistent;
+  InertiaForm inertia = InertiaForm::Corrected;
 
   double sin_phi() const { return std::sin(friction_angle_deg * pi / 180.0); }
   double wall_mu() const { return wall_friction >= 0.0 ? wall_friction : std::tan(friction_angle_deg * pi / 180.0); }

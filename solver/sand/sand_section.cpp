@@ -16,6 +16,8 @@ SandParams read_sand(JsonObject o) {
                        ? RigidStressLength::Spacing : RigidStressLength::Support;
   s.yield_surface = o.one_of("yield_surface", {"flow_consistent", "zhu_bridson"}, "flow_consistent") == "flow_consistent"
                         ? YieldSurface::FlowConsistent : YieldSurface::ZhuBridson;
+  s.inertia = o.one_of("inertia_tensor", {"corrected", "printed"}, "corrected") == "corrected" ? InertiaForm::Corrected
+                                                                                                 : InertiaForm::Printed;
   o.finish();
   return s;
 }

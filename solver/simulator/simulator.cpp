@@ -180,7 +180,7 @@ void Simulator<D>::integrate(double dt) {
   std::vector<ClusterMotion<D>> motions;
   if (has_sand_) {
     auto tc = timers_.time(Stage::Clusters);
-    motions = cluster_motions(ps_, clusters_, dt);  // eqs 13-18, from the velocities before the step
+    motions = cluster_motions(ps_, clusters_, dt, params_.sand.inertia);  // eqs 13-18, from the velocities before the step
     constrain_clusters_by_walls<D>(ps_, nb_, clusters_, motions, dt, params_.sand.wall_mu());
   }
   if (tank_walls_) x_start_.resize(ps_.size());

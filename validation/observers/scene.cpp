@@ -63,13 +63,13 @@ class SceneObserver : public Observer<D> {
     bool wetted = false;
   };
 
-  /// Needs the view's ids; saturation, where the method has it.
+  /// Follows each sand particle by its identity; saturation, where the method has it.
   void follow_sand(const ParticleView<D>& ps) {
     const bool first = time_.empty();
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.phase_of(i) != Phase::Sand) continue;
-      if (first) sand_[ps.id[i]] = SandTrack{ps.x[i]};
-      if (!ps.saturation.empty() && ps.saturation[i] >= kWetSaturation) sand_.at(ps.id[i]).wetted = true;
+      if (first) sand_[ps.identity(i)] = SandTrack{ps.x[i]};
+      if (!ps.saturation.empty() && ps.saturation[i] >= kWetSaturation) sand_.at(ps.identity(i)).wetted = true;
     }
   }
 
@@ -78,7 +78,7 @@ class SceneObserver : public Observer<D> {
     double wet = 0.0, dry = 0.0, wet_moved = 0.0, dry_moved = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.phase_of(i) != Phase::Sand) continue;
-      const SandTrack& t = sand_.at(ps.id[i]);
+      const SandTrack& t = sand_.at(ps.identity(i));
       const bool moved = (ps.x[i] - t.start).norm() > kDisplacedSpacings * dx_;
       (t.wetted ? wet : dry) += 1.0;
       (t.wetted ? wet_moved : dry_moved) += moved ? 1.0 : 0.0;
