@@ -50,6 +50,11 @@ void FlipSolver<D>::transfer_to_grid() {
   bins_.build(grid_, ps_.x);
   particles_to_grid<D>(grid_, bins_, ps_.x, ps_.v, ps_.m, u_, weight_);
   cells_.label = label_cells<D>(grid_, bins_, ps_.m, ps_.phase);
+  std::vector<double> radius(ps_.size());
+  for (std::size_t i = 0; i < ps_.size(); ++i)
+    radius[i] = 0.5 * std::pow(ps_.m[i] / (ps_.is_sand(i) ? params_.sand.rest_density : params_.water_density),
+                               1.0 / D);
+  cells_.air_distance = air_distance<D>(grid_, bins_, ps_.x, radius, cells_.label);
   cells_.density.assign(grid_.cell_count(), 0.0);
   for (std::size_t c = 0; c < cells_.label.size(); ++c)
     if (is_fluid(cells_.label[c]))
