@@ -48,6 +48,8 @@ flip::FlipParams<D> flip_params(const CaseSpec& spec, const FlipCaseParams& own,
   flip::FlipParams<D> p;
   for (int d = 0; d < D; ++d) {
     const bool lo_wall = tank.closed(d, -1), hi_wall = tank.closed(d, 1);
+    p.rough_side[2 * d] = tank.rule(d, -1) == WallRule::NoSlip;
+    p.rough_side[2 * d + 1] = tank.rule(d, 1) == WallRule::NoSlip;
     if (lo_wall && hi_wall) {
       const long n = whole_cells(tank.max[d] - tank.min[d], h);
       if (n < 2)

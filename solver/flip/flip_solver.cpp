@@ -67,7 +67,8 @@ void FlipSolver<D>::sand_step(double dt, const FaceField<D>& before_projection) 
   auto stress_scope = timers_.time(FlipStage::SandStress);
   const SandCells<D> sand = classify_sand<D>(grid_, cells_, u_, p_, params_.sand, dt);
   apply_frictional_stress<D>(grid_, cells_, sand, dt, u_);
-  const double mu = params_.sand.wall_mu();
+  SideFriction<D> mu{};
+  for (std::size_t side = 0; side < mu.size(); ++side) mu[side] = params_.rough_side[side] ? params_.sand.wall_mu() : 0.0;
   wall_friction<D>(grid_, cells_, sand, p_, mu, dt, u_);
   auto rigid_scope = timers_.time(FlipStage::RigidGroups);
   for (const auto& group : rigid_groups<D>(grid_, sand.rigid)) {

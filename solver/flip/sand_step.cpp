@@ -106,11 +106,13 @@ void apply_frictional_stress(const MacGrid<D>& grid, const CellState<D>& cells, 
 
 template <int D>
 void wall_friction(const MacGrid<D>& grid, const CellState<D>& cells, const SandCells<D>& sand_cells,
-                   const std::vector<double>& p, double mu, double dt, FaceField<D>& u) {
+                   const std::vector<double>& p, const SideFriction<D>& mu_side, double dt, FaceField<D>& u) {
   for (int a = 0; a < D; ++a)
-    for (const int layer : {0, grid.n[a] - 1})
+    for (const int side : {0, 1})
       for (int b = 0; b < D; ++b) {
-        if (b == a) continue;
+        const double mu = mu_side[2 * a + side];
+        if (b == a || mu <= 0.0) continue;
+        const int layer = side ? grid.n[a] - 1 : 0;
         const Index<D> dims = grid.face_dims(b);
 #pragma omp parallel for schedule(static)
         for (long k = 0; k < static_cast<long>(u[b].size()); ++k) {
@@ -196,8 +198,8 @@ RigidFit<D> fit_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace
 
 template <int D>
 void group_wall_friction(const MacGrid<D>& grid, const std::vector<std::size_t>& group,
-                         const std::vector<GroupFace>& faces, const RigidFit<D>& before, double mu,
-                         RigidFit<D>& fit) {
+                         const std::vector<GroupFace>& faces, const RigidFit<D>& before,
+                         const SideFriction<D>& mu_side, RigidFit<D>& fit) {
   Vec<D> axis_mass = Vec<D>::Zero();  // Σ m_f per velocity component: P_b = M_b v_b
   for (const auto& f : faces) axis_mass[f.axis] += f.mass;
   for (int a = 0; a < D; ++a)
@@ -209,8 +211,8 @@ void group_wall_friction(const MacGrid<D>& grid, const std::vector<std::size_t>&
       const double inward = side ? -1.0 : 1.0;  // the wall's normal, into the tank
       const double away = std::max(0.0, inward * fit.velocity[a]);  // no penetration of the rigid group
       fit.velocity[a] = inward * away;
-      const double pushed = away - inward * before.velocity[a];
-      if (pushed <= 0.0) continue;
+      const double pushed = away - inward * before.velocity[a], mu = mu_side[2 * a + side];
+      if (pushed <= 0.0 || mu <= 0.0) continue;
       const double impulse = axis_mass[a] * pushed;  // normal impulse of this wall on the group [N s]
       Vec<D> tangential = axis_mass.cwiseProduct(fit.velocity);
       tangential[a] = 0.0;
@@ -242,14 +244,15 @@ void apply_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace>& fa
   template void apply_frictional_stress<D>(const MacGrid<D>&, const CellState<D>&, const SandCells<D>&, double,     \
                                            FaceField<D>&);                                                          \
   template void wall_friction<D>(const MacGrid<D>&, const CellState<D>&, const SandCells<D>&,                       \
-                                 const std::vector<double>&, double, double, FaceField<D>&);                        \
+                                 const std::vector<double>&, const SideFriction<D>&, double, FaceField<D>&);        \
   template std::vector<std::vector<std::size_t>> rigid_groups<D>(const MacGrid<D>&, const std::vector<std::uint8_t>&); \
   template std::vector<GroupFace> group_faces<D>(const MacGrid<D>&, const CellState<D>&,                           \
                                                  const std::vector<std::size_t>&);                                 \
   template RigidFit<D> fit_rigid_motion<D>(const MacGrid<D>&, const std::vector<GroupFace>&, const Vec<D>&,         \
                                            const FaceField<D>&);                                                    \
   template void group_wall_friction<D>(const MacGrid<D>&, const std::vector<std::size_t>&,                          \
-                                       const std::vector<GroupFace>&, const RigidFit<D>&, double, RigidFit<D>&);   \
+                                       const std::vector<GroupFace>&, const RigidFit<D>&, const SideFriction<D>&,  \
+                                       RigidFit<D>&);                                                              \
   template void apply_rigid_motion<D>(const MacGrid<D>&, const std::vector<GroupFace>&, const RigidFit<D>&,         \
                                       FaceField<D>&);
 SC_FLIP_SAND(2)
