@@ -69,7 +69,7 @@ void FlipSolver<D>::sand_step(double dt, const FaceField<D>& before_projection) 
   apply_frictional_stress<D>(grid_, cells_, sand, dt, u_);
   SideFriction<D> mu{};
   for (std::size_t side = 0; side < mu.size(); ++side) mu[side] = params_.rough_side[side] ? params_.sand.wall_mu() : 0.0;
-  wall_friction<D>(grid_, cells_, sand, p_, mu, dt, u_);
+  wall_friction<D>(grid_, cells_, sand, p_, before_projection, mu, dt, u_);
   auto rigid_scope = timers_.time(FlipStage::RigidGroups);
   for (const auto& group : rigid_groups<D>(grid_, sand.rigid)) {
     Vec<D> centre = Vec<D>::Zero();
