@@ -26,7 +26,7 @@ template <int D>
 double surface_fraction(const MacGrid<D>& grid, const CellState<D>& cells, int a, const Index<D>& f);
 
 /// The pressure of the fluid cells extended to their air neighbours by the ghost values of the
-/// free-surface condition, p_air = p_fluid (1 − 1/θ) (mean over its fluid face neighbours), so that
+/// free-surface condition [Zhu-Bridson 2005: free surface], p_air = p_fluid (1 − 1/θ) (mean over its fluid face neighbours), so that
 /// interpolation between a fluid and an air cell centre passes through p = 0 at the surface.
 template <int D>
 std::vector<double> ghost_pressure(const MacGrid<D>& grid, const CellState<D>& cells, const std::vector<double>& p);
