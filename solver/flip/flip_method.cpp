@@ -48,6 +48,8 @@ flip::FlipParams<D> flip_params(const CaseSpec& spec, const FlipCaseParams& own,
   flip::FlipParams<D> p;
   for (int d = 0; d < D; ++d) {
     const bool lo_wall = tank.closed(d, -1), hi_wall = tank.closed(d, 1);
+    p.rough_side[2 * d] = tank.rule(d, -1) == WallRule::NoSlip;
+    p.rough_side[2 * d + 1] = tank.rule(d, 1) == WallRule::NoSlip;
     if (lo_wall && hi_wall) {
       const long n = whole_cells(tank.max[d] - tank.min[d], h);
       if (n < 2)
@@ -113,8 +115,10 @@ ParticleView<D> FlipMethod<D>::particles() const {
   pressure_.resize(ps.size());
   density_.resize(ps.size());
   support_.assign(ps.size(), solver_.grid().dx);
+  const std::vector<double> p =
+      have_pressure ? flip::ghost_pressure<D>(solver_.grid(), solver_.cells(), solver_.pressure()) : std::vector<double>{};
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    pressure_[i] = have_pressure ? solver_.grid().interpolate_cells(solver_.pressure(), ps.x[i]) : 0.0;
+    pressure_[i] = have_pressure ? solver_.grid().interpolate_cells(p, ps.x[i]) : 0.0;
     density_[i] = ps.is_sand(i) ? params.sand.rest_density : params.water_density;
   }
   ParticleView<D> view = view_of(ps);

@@ -50,6 +50,11 @@ void FlipSolver<D>::transfer_to_grid() {
   bins_.build(grid_, ps_.x);
   particles_to_grid<D>(grid_, bins_, ps_.x, ps_.v, ps_.m, u_, weight_);
   cells_.label = label_cells<D>(grid_, bins_, ps_.m, ps_.phase);
+  std::vector<double> radius(ps_.size());
+  for (std::size_t i = 0; i < ps_.size(); ++i)
+    radius[i] = 0.5 * std::pow(ps_.m[i] / (ps_.is_sand(i) ? params_.sand.rest_density : params_.water_density),
+                               1.0 / D);
+  cells_.air_distance = air_distance<D>(grid_, bins_, ps_.x, radius, cells_.label);
   cells_.density.assign(grid_.cell_count(), 0.0);
   for (std::size_t c = 0; c < cells_.label.size(); ++c)
     if (is_fluid(cells_.label[c]))
@@ -62,8 +67,9 @@ void FlipSolver<D>::sand_step(double dt, const FaceField<D>& before_projection) 
   auto stress_scope = timers_.time(FlipStage::SandStress);
   const SandCells<D> sand = classify_sand<D>(grid_, cells_, u_, p_, params_.sand, dt);
   apply_frictional_stress<D>(grid_, cells_, sand, dt, u_);
-  const double mu = params_.sand.wall_mu();
-  wall_friction<D>(grid_, cells_, sand, p_, mu, dt, u_);
+  SideFriction<D> mu{};
+  for (std::size_t side = 0; side < mu.size(); ++side) mu[side] = params_.rough_side[side] ? params_.sand.wall_mu() : 0.0;
+  wall_friction<D>(grid_, cells_, sand, p_, before_projection, mu, dt, u_);
   auto rigid_scope = timers_.time(FlipStage::RigidGroups);
   for (const auto& group : rigid_groups<D>(grid_, sand.rigid)) {
     Vec<D> centre = Vec<D>::Zero();

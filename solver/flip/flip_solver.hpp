@@ -24,6 +24,13 @@ enum class FlipStage { Transfer, Projection, SandStress, RigidGroups, Advection,
 inline constexpr std::array<std::string_view, static_cast<std::size_t>(FlipStage::Count)> flip_stage_names = {
     "transfer", "projection", "sand stress", "rigid groups", "advection"};
 
+template <std::size_t N>
+constexpr std::array<bool, N> filled(bool value) {
+  std::array<bool, N> a{};
+  a.fill(value);
+  return a;
+}
+
 template <int D>
 struct FlipParams {
   Vec<D> tank_lo = Vec<D>::Zero();
@@ -32,6 +39,7 @@ struct FlipParams {
   Vec<D> gravity = -9.81 * Vec<D>::Unit(D - 1);         ///< [m/s^2]
   double water_density = 1000.0;                       ///< [kg/m^3]
   SandParams sand;                                      ///< sand density, φ, c, wall friction, yield surface
+  std::array<bool, 2 * D> rough_side = filled<2 * D>(true);  ///< sides (2a + upper) whose wall friction acts on sand
   double flip_ratio = 0.95;                             ///< FLIP share of water's velocity update (sand: PIC)
   double cfl = 1.0;                                     ///< particles move at most cfl·Δx per step
   double dt_max = 1e-3;                                 ///< [s]

@@ -1,6 +1,7 @@
 #include "flip/pressure.hpp"
 
 #include <Eigen/IterativeLinearSolvers>
+#include <algorithm>
 #include <Eigen/Sparse>
 #include <stdexcept>
 
@@ -15,6 +16,40 @@ double face_density(const MacGrid<D>& grid, const CellState<D>& cells, int a, co
   const bool f0 = is_fluid(cells.label[c0]), f1 = is_fluid(cells.label[c1]);
   if (f0 && f1) return 0.5 * (cells.density[c0] + cells.density[c1]);
   return f0 ? cells.density[c0] : (f1 ? cells.density[c1] : 0.0);
+}
+
+template <int D>
+double surface_fraction(const MacGrid<D>& grid, const CellState<D>& cells, int a, const Index<D>& f) {
+  if (cells.air_distance.empty() || grid.is_wall_face(a, f)) return 1.0;
+  Index<D> below = f;
+  --below[a];
+  const std::size_t c0 = grid.cell(below), c1 = grid.cell(f);
+  const bool f0 = is_fluid(cells.label[c0]), f1 = is_fluid(cells.label[c1]);
+  if (f0 == f1) return 1.0;
+  return std::clamp(1.0 - cells.air_distance[f0 ? c1 : c0] / grid.dx, 0.01, 1.0);
+}
+
+template <int D>
+std::vector<double> ghost_pressure(const MacGrid<D>& grid, const CellState<D>& cells, const std::vector<double>& p) {
+  std::vector<double> out = p;
+  const long n = static_cast<long>(p.size());
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < n; ++k) {
+    if (is_fluid(cells.label[k])) continue;
+    const Index<D> c = MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n);
+    double sum = 0.0, count = 0.0;
+    for (int a = 0; a < D; ++a)
+      for (const int side : {0, 1}) {
+        Index<D> nb = c, f = c;
+        nb[a] += side ? 1 : -1;
+        f[a] += side;
+        if (!MacGrid<D>::inside(nb, grid.n) || !is_fluid(cells.label[grid.cell(nb)])) continue;
+        sum += p[grid.cell(nb)] * (1.0 - 1.0 / surface_fraction<D>(grid, cells, a, f));
+        count += 1.0;
+      }
+    out[k] = count > 0.0 ? sum / count : 0.0;
+  }
+  return out;
 }
 
 template <int D>
@@ -50,7 +85,8 @@ void assemble_row(const MacGrid<D>& grid, const CellState<D>& cells, const std::
       f[a] += side;
       nb[a] += side ? 1 : -1;
       if (grid.is_wall_face(a, f)) continue;
-      const double k = dt / (face_density<D>(grid, cells, a, f) * grid.dx * grid.dx);
+      const double k =
+          dt / (face_density<D>(grid, cells, a, f) * surface_fraction<D>(grid, cells, a, f) * grid.dx * grid.dx);
       diag += k;
       const long rn = row_of[grid.cell(nb)];
       if (rn >= 0) triplets.emplace_back(r, rn, -k);
@@ -108,9 +144,10 @@ ProjectionStats project(const MacGrid<D>& grid, const CellState<D>& cells, doubl
       Index<D> f = MacGrid<D>::unflat(static_cast<std::size_t>(k), dims);
       const double rho = face_density<D>(grid, cells, a, f);
       if (rho == 0.0) continue;
+      const double theta = surface_fraction<D>(grid, cells, a, f);
       const double p_high = p[grid.cell(f)];
       --f[a];
-      u[a][k] -= dt / (rho * grid.dx) * (p_high - p[grid.cell(f)]);
+      u[a][k] -= dt / (rho * theta * grid.dx) * (p_high - p[grid.cell(f)]);
     }
   }
   return stats;
@@ -118,6 +155,8 @@ ProjectionStats project(const MacGrid<D>& grid, const CellState<D>& cells, doubl
 
 #define SC_FLIP_PRESSURE(D)                                                                                       \
   template double face_density<D>(const MacGrid<D>&, const CellState<D>&, int, const Index<D>&);                \
+  template double surface_fraction<D>(const MacGrid<D>&, const CellState<D>&, int, const Index<D>&);            \
+  template std::vector<double> ghost_pressure<D>(const MacGrid<D>&, const CellState<D>&, const std::vector<double>&); \
   template std::vector<double> divergence<D>(const MacGrid<D>&, const CellState<D>&, const FaceField<D>&);      \
   template ProjectionStats project<D>(const MacGrid<D>&, const CellState<D>&, double, double, long, FaceField<D>&, \
                                       std::vector<double>&);

@@ -83,6 +83,9 @@ void apply_frictional_stress(const MacGrid<D>& grid, const CellState<D>& cells, 
     const std::size_t k = grid.cell(c);
     return sand_cells.yielding[k] ? sand_cells.stress[k](a, b) : 0.0;
   };
+  const auto sand_at = [&](const Index<D>& c) {
+    return MacGrid<D>::inside(c, grid.n) && cells.label[grid.cell(c)] == Cell::Sand;
+  };
   for (int a = 0; a < D; ++a) {
     const Index<D> dims = grid.face_dims(a);
 #pragma omp parallel for schedule(static)
@@ -95,7 +98,9 @@ void apply_frictional_stress(const MacGrid<D>& grid, const CellState<D>& cells, 
       for (int b = 0; b < D; ++b) {
         if (b == a) continue;
         const auto edge = [&](int s) {
-          return 0.25 * (tau(c0, a, b) + tau(c1, a, b) + tau(shifted<D>(c0, b, s), a, b) + tau(shifted<D>(c1, b, s), a, b));
+          const Index<D> d0 = shifted<D>(c0, b, s), d1 = shifted<D>(c1, b, s);
+          if (!sand_at(c0) || !sand_at(c1) || !sand_at(d0) || !sand_at(d1)) return 0.0;  // boundary: no traction
+          return 0.25 * (tau(c0, a, b) + tau(c1, a, b) + tau(d0, a, b) + tau(d1, a, b));
         };
         div += (edge(1) - edge(-1)) / grid.dx;
       }
@@ -105,21 +110,33 @@ void apply_frictional_stress(const MacGrid<D>& grid, const CellState<D>& cells, 
 }
 
 template <int D>
+double wall_normal_stress(const MacGrid<D>& grid, const CellState<D>& cells, const std::vector<double>& p,
+                          const FaceField<D>& before, double dt, int a, int side, const Index<D>& c) {
+  const std::size_t k = grid.cell(c);
+  const double into_wall = side ? before[a][grid.face(a, shifted<D>(c, a, 1))] : -before[a][grid.face(a, c)];
+  return std::max(0.0, p[k]) + cells.density[k] * grid.dx / (2.0 * dt) * std::max(0.0, into_wall);
+}
+
+template <int D>
 void wall_friction(const MacGrid<D>& grid, const CellState<D>& cells, const SandCells<D>& sand_cells,
-                   const std::vector<double>& p, double mu, double dt, FaceField<D>& u) {
+                   const std::vector<double>& p, const FaceField<D>& before, const SideFriction<D>& mu_side, double dt,
+                   FaceField<D>& u) {
   for (int a = 0; a < D; ++a)
-    for (const int layer : {0, grid.n[a] - 1})
+    for (const int side : {0, 1})
       for (int b = 0; b < D; ++b) {
-        if (b == a) continue;
+        const double mu = mu_side[2 * a + side];
+        if (b == a || mu <= 0.0) continue;
+        const int layer = side ? grid.n[a] - 1 : 0;
         const Index<D> dims = grid.face_dims(b);
 #pragma omp parallel for schedule(static)
         for (long k = 0; k < static_cast<long>(u[b].size()); ++k) {
           const Index<D> c1 = MacGrid<D>::unflat(static_cast<std::size_t>(k), dims);
           if (c1[a] != layer || grid.is_wall_face(b, c1)) continue;
-          const std::size_t k0 = grid.cell(shifted<D>(c1, b, -1)), k1 = grid.cell(c1);
-          if (!sand_cells.yielding[k0] && !sand_cells.yielding[k1]) continue;
-          const double pressure = 0.5 * (std::max(0.0, p[k0]) + std::max(0.0, p[k1]));
-          const double bound = mu * pressure * dt / (face_density<D>(grid, cells, b, c1) * grid.dx);
+          const Index<D> c0 = shifted<D>(c1, b, -1);
+          if (!sand_cells.yielding[grid.cell(c0)] && !sand_cells.yielding[grid.cell(c1)]) continue;
+          const double stress = 0.5 * (wall_normal_stress<D>(grid, cells, p, before, dt, a, side, c0) +
+                                       wall_normal_stress<D>(grid, cells, p, before, dt, a, side, c1));
+          const double bound = mu * stress * dt / (face_density<D>(grid, cells, b, c1) * grid.dx);
           const double speed = std::abs(u[b][k]);
           u[b][k] = speed > bound ? u[b][k] * (1.0 - bound / speed) : 0.0;
         }
@@ -196,8 +213,8 @@ RigidFit<D> fit_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace
 
 template <int D>
 void group_wall_friction(const MacGrid<D>& grid, const std::vector<std::size_t>& group,
-                         const std::vector<GroupFace>& faces, const RigidFit<D>& before, double mu,
-                         RigidFit<D>& fit) {
+                         const std::vector<GroupFace>& faces, const RigidFit<D>& before,
+                         const SideFriction<D>& mu_side, RigidFit<D>& fit) {
   Vec<D> axis_mass = Vec<D>::Zero();  // Σ m_f per velocity component: P_b = M_b v_b
   for (const auto& f : faces) axis_mass[f.axis] += f.mass;
   for (int a = 0; a < D; ++a)
@@ -209,8 +226,8 @@ void group_wall_friction(const MacGrid<D>& grid, const std::vector<std::size_t>&
       const double inward = side ? -1.0 : 1.0;  // the wall's normal, into the tank
       const double away = std::max(0.0, inward * fit.velocity[a]);  // no penetration of the rigid group
       fit.velocity[a] = inward * away;
-      const double pushed = away - inward * before.velocity[a];
-      if (pushed <= 0.0) continue;
+      const double pushed = away - inward * before.velocity[a], mu = mu_side[2 * a + side];
+      if (pushed <= 0.0 || mu <= 0.0) continue;
       const double impulse = axis_mass[a] * pushed;  // normal impulse of this wall on the group [N s]
       Vec<D> tangential = axis_mass.cwiseProduct(fit.velocity);
       tangential[a] = 0.0;
@@ -241,15 +258,19 @@ void apply_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace>& fa
                                          const std::vector<double>&, const SandParams&, double);                   \
   template void apply_frictional_stress<D>(const MacGrid<D>&, const CellState<D>&, const SandCells<D>&, double,     \
                                            FaceField<D>&);                                                          \
+  template double wall_normal_stress<D>(const MacGrid<D>&, const CellState<D>&, const std::vector<double>&,        \
+                                        const FaceField<D>&, double, int, int, const Index<D>&);                    \
   template void wall_friction<D>(const MacGrid<D>&, const CellState<D>&, const SandCells<D>&,                       \
-                                 const std::vector<double>&, double, double, FaceField<D>&);                        \
+                                 const std::vector<double>&, const FaceField<D>&, const SideFriction<D>&, double,   \
+                                 FaceField<D>&);                                                                    \
   template std::vector<std::vector<std::size_t>> rigid_groups<D>(const MacGrid<D>&, const std::vector<std::uint8_t>&); \
   template std::vector<GroupFace> group_faces<D>(const MacGrid<D>&, const CellState<D>&,                           \
                                                  const std::vector<std::size_t>&);                                 \
   template RigidFit<D> fit_rigid_motion<D>(const MacGrid<D>&, const std::vector<GroupFace>&, const Vec<D>&,         \
                                            const FaceField<D>&);                                                    \
   template void group_wall_friction<D>(const MacGrid<D>&, const std::vector<std::size_t>&,                          \
-                                       const std::vector<GroupFace>&, const RigidFit<D>&, double, RigidFit<D>&);   \
+                                       const std::vector<GroupFace>&, const RigidFit<D>&, const SideFriction<D>&,  \
+                                       RigidFit<D>&);                                                              \
   template void apply_rigid_motion<D>(const MacGrid<D>&, const std::vector<GroupFace>&, const RigidFit<D>&,         \
                                       FaceField<D>&);
 SC_FLIP_SAND(2)

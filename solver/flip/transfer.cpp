@@ -1,5 +1,8 @@
 #include "flip/transfer.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace sc::flip {
 
 template <int D>
@@ -86,6 +89,54 @@ std::vector<Cell> label_cells(const MacGrid<D>& grid, const ParticleBins<D>& bin
   return label;
 }
 
+namespace {
+
+/// φ(x_c) = |x_c − x̄| − r̄ at the centre of cell c, x̄ and r̄ the k-weighted means of the particle
+/// positions and radii within `reach`, k(s) = (1 − s²)³; Δx when no particle is within reach.
+template <int D>
+double surface_distance(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
+                        std::span<const double> radius, double reach, const Index<D>& c) {
+  const Vec<D> xc = grid.cell_centre(c);
+  const int rings = static_cast<int>(std::ceil(reach / grid.dx));
+  Index<D> extent{};
+  extent.fill(2 * rings + 1);
+  double w_sum = 0.0, r_sum = 0.0;
+  Vec<D> x_sum = Vec<D>::Zero();
+  for (std::size_t j = 0; j < MacGrid<D>::count(extent); ++j) {
+    Index<D> nb = MacGrid<D>::unflat(j, extent);
+    for (int d = 0; d < D; ++d) nb[d] += c[d] - rings;
+    if (!MacGrid<D>::inside(nb, grid.n)) continue;
+    for (const auto p : bins.in(grid.cell(nb))) {
+      const double s2 = (x[p] - xc).squaredNorm() / (reach * reach);
+      if (s2 >= 1.0) continue;
+      const double w = (1.0 - s2) * (1.0 - s2) * (1.0 - s2);
+      w_sum += w;
+      x_sum += w * x[p];
+      r_sum += w * radius[p];
+    }
+  }
+  if (w_sum == 0.0) return grid.dx;
+  return std::clamp((xc - x_sum / w_sum).norm() - r_sum / w_sum, 0.0, grid.dx);
+}
+
+}  // namespace
+
+template <int D>
+std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
+                                 std::span<const double> radius, const std::vector<Cell>& label) {
+  std::vector<double> phi(grid.cell_count(), grid.dx);
+  if (radius.empty()) return phi;
+  double mean_radius = 0.0;
+  for (const double r : radius) mean_radius += r;
+  const double reach = 4.0 * mean_radius / static_cast<double>(radius.size());  // twice the mean spacing
+  const long n = static_cast<long>(phi.size());
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < n; ++k)
+    if (!is_fluid(label[k]))
+      phi[k] = surface_distance<D>(grid, bins, x, radius, reach, MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n));
+  return phi;
+}
+
 template <int D>
 Vec<D> grid_to_particle(const MacGrid<D>& grid, const FaceField<D>& u, const FaceField<D>& u_old, const Vec<D>& x,
                         const Vec<D>& v, double flip_ratio) {
@@ -114,6 +165,8 @@ Vec<D> advect_rk2(const MacGrid<D>& grid, const FaceField<D>& u, const Vec<D>& x
                                      FaceField<D>&);                                                            \
   template std::vector<Cell> label_cells<D>(const MacGrid<D>&, const ParticleBins<D>&, std::span<const double>, \
                                             std::span<const std::uint8_t>);                                    \
+  template std::vector<double> air_distance<D>(const MacGrid<D>&, const ParticleBins<D>&, std::span<const Vec<D>>, \
+                                              std::span<const double>, const std::vector<Cell>&);              \
   template Vec<D> grid_to_particle<D>(const MacGrid<D>&, const FaceField<D>&, const FaceField<D>&,              \
                                       const Vec<D>&, const Vec<D>&, double);                                   \
   template Vec<D> advect_rk2<D>(const MacGrid<D>&, const FaceField<D>&, const Vec<D>&, double);

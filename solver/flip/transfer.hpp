@@ -35,6 +35,16 @@ template <int D>
 std::vector<Cell> label_cells(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const double> m,
                               std::span<const std::uint8_t> phase);
 
+/// Distance from each air cell centre to the particles' surface [Zhu-Bridson 2005: Surface
+/// Reconstruction]: φ(x) = |x − x̄| − r̄, with x̄ and r̄ the means of the particle positions and radii
+/// (r_i half the particle's spacing (m/ρ)^(1/D)) weighted by k(|x − x_i|/R) = (1 − |x − x_i|²/R²)³,
+/// R twice the mean particle spacing; clamped to [0, Δx] (Δx with no particle within R and in fluid
+/// cells). It places the free surface p = 0 between an air cell and its fluid neighbour
+/// (pressure.hpp surface_fraction).
+template <int D>
+std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
+                                 std::span<const double> radius, const std::vector<Cell>& label);
+
 /// Grid-to-particle update [Zhu-Bridson 2005: Updating Particle Velocities]: PIC takes the
 /// interpolated new grid velocity, FLIP adds the interpolated change u − u_old to the particle's
 /// velocity; v ← (1 − r) v_PIC + r v_FLIP with the FLIP ratio r (r = 0 for sand: PIC, "for viscous
