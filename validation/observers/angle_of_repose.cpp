@@ -61,7 +61,7 @@ class AngleOfReposeObserver : public Observer<D> {
     add_flank_lines(r.series, "right", xr, yr, H, -1.0);
     r.plots = {{"pile.png", "Sand pile at rest: flank fits (20-80% of the height) against phi +- 3 deg", "x [m]",
                 "height [m]",
-                {{"surface_sim", "SPH sand surface", "line"},
+                {{"surface_sim", "simulated sand surface", "line"},
                  {"flank_fit_left", "left flank fit", "line"},
                  {"flank_fit_right", "right flank fit", "line"},
                  {"band_left", "gate band phi +- 3 deg (left)", "line"},

@@ -73,10 +73,10 @@ class ColumnCollapseObserver : public Observer<D> {
                 {"back_wall_band", "x / L0", "height / H0", {0.0, 0.0}, {0.95, 1.05}},
                 {"energy_sim", "t [s]", "kinetic energy / peak", time_, normalised_energy()}};
     r.plots = {{"deposit.png", "Granular column collapse (a = H0/L0): final deposit", "x / L0", "height / H0",
-                {{"deposit_sim", "SPH sand deposit", "line"}, {"initial_column", "initial column", "line"},
+                {{"deposit_sim", "simulated deposit", "line"}, {"initial_column", "initial column", "line"},
                  {"runout_band", "runout band (Lube 2005 / Lajeunesse 2005)", "line"},
                  {"back_wall_band", "back wall H0 ± 5% (Bui 2008)", "markers"}}},
-               {"energy.png", "Kinetic energy of the sand", "t [s]", "E / E_peak", {{"energy_sim", "SPH", "line"}}}};
+               {"energy.png", "Kinetic energy of the sand", "t [s]", "E / E_peak", {{"energy_sim", "simulated", "line"}}}};
     if (water_) {
       r.series.push_back({"water_balance_sim", "t [s]", "relative change of free + absorbed water", time_, water_change()});
       r.plots.push_back({"water_balance.png", "Water balance (docs/references.md §8: exact)", "t [s]",

@@ -130,7 +130,7 @@ class HydrostaticObserver : public Observer<D> {
                 {"max_speed", "time [s]", "largest water speed [m/s]", time_, speed_}};
     r.plots = {{"pressure_profile.png", "Hydrostatic pressure, averaged over the last " + format_number(average_time_) + " s",
                 "pressure [Pa]", "height above floor [m]",
-                {{"pressure_sim", "SPH (bin average)", "markers"}, {"pressure_exact", "rho0 g (H - z)", "line"}}},
+                {{"pressure_sim", "simulated (bin average)", "markers"}, {"pressure_exact", "rho0 g (H - z)", "line"}}},
                {"surface_and_speed.png", "Surface height", "time [s]", "surface height [m]",
                 {{"surface_height", "measured H", "line"}}},
                {"max_speed.png", "Largest water speed", "time [s]", "speed [m/s]", {{"max_speed", "max |v|", "line"}}}};
