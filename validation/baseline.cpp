@@ -139,7 +139,7 @@ json compare_with_baseline(const CaseSpec& spec, const json& entry, const std::s
                            const std::string& baselines_dir) {
   const RunRecord run = record_from_entry(entry, run_dir);
   check_limit_names(spec, run);
-  const std::string id = entry.value("run_id", spec.name);
+  const std::string id = run_key(entry);
   const std::string file = baselines_dir + "/" + id + ".json";
   if (!fs::exists(file))
     return missing(file, "no baseline; bless one with `sandcastle baseline --case " + spec.name +

@@ -9,8 +9,6 @@ namespace sc {
 
 namespace {
 
-bool simulated(const std::string& series) { return series.find("_sim") != std::string::npos; }
-
 /// Metric names of every run, in the order the first run lists them, then any others.
 std::vector<std::string> metric_names(const std::vector<MethodRun>& runs) {
   std::vector<std::string> names;
@@ -40,12 +38,6 @@ json metrics_side_by_side(const std::vector<MethodRun>& runs) {
   return out;
 }
 
-const Series* series_named(const ObserverResult& r, const std::string& name) {
-  for (const Series& s : r.series)
-    if (s.name == name) return &s;
-  return nullptr;
-}
-
 }  // namespace
 
 ObserverResult methods_overlay(const std::vector<MethodRun>& runs) {
@@ -54,19 +46,18 @@ ObserverResult methods_overlay(const std::vector<MethodRun>& runs) {
   for (const Plot& plot : first.plots) {
     Plot overlay{"methods_" + plot.file, plot.title + ", by method", plot.x_label, plot.y_label, {}};
     for (const Curve& c : plot.curves) {
-      if (!simulated(c.series)) {
-        if (const Series* s = series_named(first, c.series)) {
-          if (!series_named(out, s->name)) out.series.push_back(*s);
-          overlay.curves.push_back(c);
-        }
+      const Series* own = find_series(first, c.series);
+      if (own && !is_simulated(*own)) {  // a reference: once
+        if (!find_series(out, own->name)) out.series.push_back(*own);
+        overlay.curves.push_back(c);
         continue;
       }
       for (const MethodRun& r : runs) {
-        const Series* s = series_named(r.observed, c.series);
+        const Series* s = find_series(r.observed, c.series);
         if (!s) continue;
         Series renamed = *s;
         renamed.name = s->name + "@" + r.method;
-        if (!series_named(out, renamed.name)) out.series.push_back(renamed);
+        if (!find_series(out, renamed.name)) out.series.push_back(renamed);
         overlay.curves.push_back({renamed.name, c.label + " (" + r.method + ")", c.style});
       }
     }

@@ -40,4 +40,12 @@ std::string format_number(double v) {
   return buf;
 }
 
+const Series* find_series(const ObserverResult& r, const std::string& name) {
+  for (const Series& s : r.series)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+bool is_simulated(const Series& s) { return s.name.find("_sim") != std::string::npos; }
+
 }  // namespace sc

@@ -64,6 +64,12 @@ void add_metric(ObserverResult& r, const std::map<std::string, MetricLimit>& lim
 /// A short human form of a number (printf %g).
 std::string format_number(double v);
 
+/// The series named `name` of r, or nullptr.
+const Series* find_series(const ObserverResult& r, const std::string& name);
+
+/// Whether a series is simulated (its name holds "_sim"), as opposed to a reference or exact curve.
+bool is_simulated(const Series& s);
+
 template <int D>
 class Observer {
  public:

@@ -16,12 +16,6 @@ bool run_twin(const CaseSpec& twin, double dx, const RunSettings& settings, cons
   return false;
 }
 
-const Series* find_series(const ObserverResult& r, const std::string& name) {
-  for (const Series& s : r.series)
-    if (s.name == name) return &s;
-  return nullptr;
-}
-
 void overlay_twin(const Series& twin, const std::string& name, const std::string& prefix, const std::string& label,
                   ObserverResult& r) {
   Series renamed = twin;

@@ -15,9 +15,6 @@ namespace sc {
 bool run_twin(const CaseSpec& twin, double dx, const RunSettings& settings, const std::string& subdir,
               const std::string& what, RunResult& run, RunResult& twin_result);
 
-/// The series named `name` of r, or nullptr.
-const Series* find_series(const ObserverResult& r, const std::string& name);
-
 /// The twin's copy of series `name` joins r as <prefix>_<name>, with label `label` on every plot
 /// that shows `name`.
 void overlay_twin(const Series& twin, const std::string& name, const std::string& prefix, const std::string& label,

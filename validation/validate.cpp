@@ -39,7 +39,7 @@ MethodRun validate_case(const CaseSpec& spec, const std::string& id, const Valid
   ObserverResult plotted = runs.back().observed;
   for (std::size_t k = 0; k + 1 < runs.size(); ++k)  // coarser resolutions join the plots
     for (const Series& s : runs[k].observed.series) {
-      if (s.name.find("_sim") == std::string::npos) continue;
+      if (!is_simulated(s)) continue;
       Series renamed = s;
       renamed.name = s.name + "@dx" + format_number(runs[k].spacing);
       plotted.series.push_back(renamed);
