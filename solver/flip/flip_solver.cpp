@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/errors.hpp"
+#include "core/particle_set.hpp"
 #include "flip/extrapolate.hpp"
 
 namespace sc::flip {
@@ -52,8 +53,7 @@ void FlipSolver<D>::transfer_to_grid() {
   cells_.label = label_cells<D>(grid_, bins_, ps_.m, ps_.phase);
   std::vector<double> radius(ps_.size());
   for (std::size_t i = 0; i < ps_.size(); ++i)
-    radius[i] = 0.5 * std::pow(ps_.m[i] / (ps_.is_sand(i) ? params_.sand.rest_density : params_.water_density),
-                               1.0 / D);
+    radius[i] = 0.5 * particle_size<D>(ps_.m[i] / (ps_.is_sand(i) ? params_.sand.rest_density : params_.water_density));
   cells_.air_distance = air_distance<D>(grid_, bins_, ps_.x, radius, cells_.label);
   cells_.density.assign(grid_.cell_count(), 0.0);
   for (std::size_t c = 0; c < cells_.label.size(); ++c)

@@ -119,6 +119,19 @@ double surface_distance(const MacGrid<D>& grid, const ParticleBins<D>& bins, std
   return std::clamp((xc - x_sum / w_sum).norm() - r_sum / w_sum, 0.0, grid.dx);
 }
 
+/// Whether cell c has a fluid cell across one of its faces: only such air cells have a face between
+/// fluid and air, the one place the surface distance is read (pressure.cpp surface_fraction).
+template <int D>
+bool borders_fluid(const MacGrid<D>& grid, const std::vector<Cell>& label, const Index<D>& c) {
+  for (int a = 0; a < D; ++a)
+    for (const int s : {-1, 1}) {
+      Index<D> nb = c;
+      nb[a] += s;
+      if (MacGrid<D>::inside(nb, grid.n) && is_fluid(label[grid.cell(nb)])) return true;
+    }
+  return false;
+}
+
 }  // namespace
 
 template <int D>
@@ -131,9 +144,11 @@ std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& 
   const double reach = 4.0 * mean_radius / static_cast<double>(radius.size());  // twice the mean spacing
   const long n = static_cast<long>(phi.size());
 #pragma omp parallel for schedule(static)
-  for (long k = 0; k < n; ++k)
-    if (!is_fluid(label[k]))
-      phi[k] = surface_distance<D>(grid, bins, x, radius, reach, MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n));
+  for (long k = 0; k < n; ++k) {
+    if (is_fluid(label[k])) continue;
+    const Index<D> c = MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n);
+    if (borders_fluid<D>(grid, label, c)) phi[k] = surface_distance<D>(grid, bins, x, radius, reach, c);
+  }
   return phi;
 }
 

@@ -38,9 +38,9 @@ std::vector<Cell> label_cells(const MacGrid<D>& grid, const ParticleBins<D>& bin
 /// Distance from each air cell centre to the particles' surface [Zhu-Bridson 2005: Surface
 /// Reconstruction]: φ(x) = |x − x̄| − r̄, with x̄ and r̄ the means of the particle positions and radii
 /// (r_i half the particle's spacing (m/ρ)^(1/D)) weighted by k(|x − x_i|/R) = (1 − |x − x_i|²/R²)³,
-/// R twice the mean particle spacing; clamped to [0, Δx] (Δx with no particle within R and in fluid
-/// cells). It places the free surface p = 0 between an air cell and its fluid neighbour
-/// (pressure.hpp surface_fraction).
+/// R twice the mean particle spacing; clamped to [0, Δx] (Δx with no particle within R, in fluid
+/// cells and in air cells with no fluid face neighbour, where it is never read). It places the
+/// free surface p = 0 between an air cell and its fluid neighbour (pressure.hpp surface_fraction).
 template <int D>
 std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
                                  std::span<const double> radius, const std::vector<Cell>& label);
