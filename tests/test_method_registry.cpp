@@ -54,6 +54,15 @@ json small_flip_case_json() {
   return doc;
 }
 
+/// A sand column 0.1 m x 0.1 m on the floor of the small dam break's tank, run by DEM.
+json small_dem_case_json() {
+  json doc = small_case_json();
+  doc["sand"] = {{"rest_density", 2650.0}, {"friction_angle", 30.0}, {"cohesion", 0.0}};
+  doc["blocks"] = json::array({{{"phase", "sand"}, {"min", {0.0, 0.0}}, {"max", {0.1, 0.1}}}});
+  doc["methods"] = {{"dem", {{"friction", 0.5}, {"rolling_friction", 0.3}}}};
+  return doc;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(method_registry)
@@ -276,6 +285,57 @@ BOOST_AUTO_TEST_CASE(an_unknown_flip_parameter_is_rejected_with_its_path) {
     BOOST_ERROR("a tank that is not a whole number of cells was accepted");
   } catch (const InputError& e) {
     BOOST_TEST(e.json_path() == "/methods/flip/cell_size");
+  }
+}
+
+// DEM through the seam (solver/dem/dem_method.hpp): one grain per lattice site carrying the bulk
+// mass of its site (the column weighs ρ L H), the grains fall onto the floor and push no deeper than
+// the overlap the stiffness was set for, the run times its contact steps and is the same bitwise on
+// one and two threads.
+BOOST_AUTO_TEST_CASE(a_dem_run_built_through_the_registry_settles_on_its_springs) {
+  const CaseSpec spec = with_method(load_case(write_case(small_dem_case_json())), "dem");
+  const int saved = omp_get_max_threads();
+  std::string checksum[2];
+  for (const int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    const std::unique_ptr<Method<2>> run = make_method<2>(spec, 0.01);
+    BOOST_TEST(run->name() == "dem");
+    BOOST_TEST(!method_writes_checkpoints("dem"));
+    double mass = 0.0;
+    for (std::size_t i = 0; i < run->particles().size(); ++i) mass += run->particles().m[i];
+    BOOST_TEST(run->particles().size() == 100u);
+    BOOST_TEST(mass == 0.1 * 0.1 * 2650.0, boost::test_tools::tolerance(1e-12));
+    for (int k = 0; k < 1000; ++k) run->step();
+    const ParticleView<2> view = run->particles();
+    BOOST_TEST(view_checksum(view) == run->checksum());
+    double lowest = INFINITY;
+    for (std::size_t i = 0; i < view.size(); ++i) lowest = std::min(lowest, view.x[i][1] - view.support[i]);
+    BOOST_TEST_MESSAGE("lowest " << lowest);
+    BOOST_TEST(lowest < 0.0);                   // resting on the floor's spring
+    BOOST_TEST(lowest > -0.01 * 0.5 * 0.01);    // by less than 1 % of the grain radius
+    BOOST_TEST(run->stage_times().front().count > 200);  // several contact steps per case step
+    checksum[threads - 1] = run->checksum();
+  }
+  omp_set_num_threads(saved);
+  BOOST_TEST(checksum[0] == checksum[1]);
+}
+
+BOOST_AUTO_TEST_CASE(a_dem_case_with_water_or_a_bad_parameter_is_rejected_with_its_path) {
+  json doc = small_dem_case_json();
+  doc["methods"]["dem"]["restitution"] = 0.0;
+  try {
+    check_method(load_case(write_case(doc)));
+    BOOST_ERROR("restitution 0 was accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.json_path() == "/methods/dem/restitution");
+  }
+  doc = small_dem_case_json();
+  doc["blocks"].push_back({{"phase", "water"}, {"min", {0.2, 0.0}}, {"max", {0.3, 0.1}}});
+  try {
+    check_method(load_case(write_case(doc)));
+    BOOST_ERROR("a water block was accepted for DEM");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.json_path() == "/blocks/1/phase");
   }
 }
 

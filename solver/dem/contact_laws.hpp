@@ -2,12 +2,14 @@
 // 2008 (seed 003) with the seed's bugs fixed openly:
 // - the spring acts along the contact normal (the seed directs it along the normal relative
 //   velocity, which flips sign as the grains separate);
-// - the tangential force is a Coulomb law regularised by a viscous slope and bounded by μ|F_n|
-//   (the seed's constant-magnitude form chatters and cannot stick);
+// - the tangential force is a Coulomb law regularised by a tangential spring with contact history
+//   (Cundall & Strack 1979), bounded by μ|F_n| (the seed's constant-magnitude form chatters, and a
+//   purely viscous regularisation creeps under a static load, so no pile could stand);
 // - the bridge acts only between two grains that both hold water (the seed's form gives two dry
 //   grains the strongest bridge).
 // Every law returns the force on grain i; grain j evaluates the same law from its side, which gives
-// the exact negative (the pair terms are antisymmetric in their inputs), so momentum is conserved.
+// the exact negative (the pair terms are antisymmetric in their inputs, the springs each grain keeps
+// of a contact stay exact negatives of each other), so momentum is conserved.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -31,8 +33,9 @@ struct Contact {
 
 template <int D>
 struct ContactForce {
-  Vec<D> force;    ///< on i [N]
-  Spin<D> torque;  ///< on i about its centre [N m]
+  Vec<D> force;          ///< on i [N]
+  Spin<D> torque;        ///< on i about its centre [N m]
+  bool touching = false; ///< the bodies overlap: the contact's springs are kept for the next step
 };
 
 /// Normal force magnitude (positive = repulsive) of the linear spring-dashpot, spring along the
@@ -44,39 +47,54 @@ inline double normal_force(double k_s, double k_d, double wet_factor, double ove
   return k_s * overlap + k_d * wet_factor * v_n;
 }
 
-/// Regularised Coulomb friction [Rungjiratananon 2008: DEM tangential force, fixed]:
-///   F_t = −min(γ_t (1 + w_i + w_j) |v_t|, μ |F_n|) v_t/|v_t|,
-/// the wetness factor raising the viscous slope as the paper raises its tangential coefficient.
-/// Below the bound the grain creeps at a speed ∝ 1/γ_t instead of sticking exactly.
+/// Coulomb friction with a tangential spring [Cundall & Strack 1979; Rungjiratananon 2008: DEM
+/// tangential force, fixed]: the stretch ξ, kept in the tangent plane, grows by v_t Δt; the force
+/// −k_t ξ − γ_t (1 + w_i + w_j) v_t is bounded by μ|F_n|, and at the bound (sliding) ξ is reset to
+/// the stretch that gives the bounded force. A stuck contact holds any tangential load below μ|F_n|.
 template <int D>
-inline Vec<D> tangential_force(const Vec<D>& v_t, double gamma_t, double wet_factor, double mu, double f_n) {
-  const double speed = v_t.norm();
-  if (speed <= 0.0) return Vec<D>::Zero();
-  const double magnitude = std::min(gamma_t * wet_factor * speed, mu * std::abs(f_n));
-  return (-magnitude / speed) * v_t;
+inline Vec<D> tangential_force(const Vec<D>& n, const Vec<D>& v_t, double k_t, double gamma_t, double wet_factor,
+                               double mu, double f_n, double dt, Vec<D>& slip) {
+  slip -= slip.dot(n) * n;
+  slip += dt * v_t;
+  const Vec<D> f = -k_t * slip - (gamma_t * wet_factor) * v_t;
+  const double bound = mu * std::abs(f_n), magnitude = f.norm();
+  if (magnitude <= bound) return f;
+  const Vec<D> sliding = (bound / magnitude) * f;
+  slip = (-1.0 / k_t) * (sliding + (gamma_t * wet_factor) * v_t);
+  return sliding;
 }
 
-/// Rolling resistance (ours, not in the paper: piles of round grains need it to stand near 30°):
-/// a torque opposing the relative spin, regularised like friction and bounded by μ_r R_eff |F_n|.
+/// Rolling resistance, elastic-plastic spring-dashpot (ours, not in the paper: piles of round grains
+/// need it to stand near 30°) [Ai et al. 2011: rolling model C]: the twist ψ grows by (ω_i − ω_j) Δt;
+/// the torque −k_r ψ − γ_r (ω_i − ω_j), k_r = 2.25 k_n μ_r² R_eff², is bounded by μ_r R_eff |F_n|,
+/// and at the bound ψ is reset to the twist that gives the bounded torque.
 template <int D>
-inline Spin<D> rolling_torque(const Spin<D>& omega_rel, double slope, double mu_r, double r_eff, double f_n) {
-  const double rate = omega_rel.norm();
-  if (rate <= 0.0 || mu_r <= 0.0) return Spin<D>::Zero();
-  const double magnitude = std::min(slope * rate, mu_r * r_eff * std::abs(f_n));
-  return (-magnitude / rate) * omega_rel;
+inline Spin<D> rolling_torque(const Spin<D>& omega_rel, double k_n, double gamma_r, double mu_r, double r_eff,
+                              double f_n, double dt, Spin<D>& roll) {
+  if (mu_r <= 0.0) return Spin<D>::Zero();
+  const double k_r = 2.25 * k_n * mu_r * mu_r * r_eff * r_eff;
+  roll += dt * omega_rel;
+  const Spin<D> m = -k_r * roll - gamma_r * omega_rel;
+  const double bound = mu_r * r_eff * std::abs(f_n), magnitude = m.norm();
+  if (magnitude <= bound) return m;
+  const Spin<D> rolling = (bound / magnitude) * m;
+  roll = (-1.0 / k_r) * (rolling + gamma_r * omega_rel);
+  return rolling;
 }
 
-/// Spring-dashpot, friction and rolling resistance of one contact, on grain i.
+/// Spring-dashpot, friction and rolling resistance of one contact over a step Δt, on grain i; the
+/// contact's springs are read and advanced in `spring`.
 template <int D>
-ContactForce<D> contact_force(const Contact<D>& c, const Params& p) {
+ContactForce<D> contact_force(const Contact<D>& c, const Params& p, double dt, Spring<D>& spring) {
   const double v_n = c.v_contact.dot(c.n);
   const double f_n = normal_force(p.stiffness, p.damping, c.wet_factor, c.overlap, v_n);
   const Vec<D> v_t = c.v_contact - v_n * c.n;
-  const Vec<D> f_t = tangential_force<D>(v_t, p.tangential_damping, c.wet_factor, c.friction, f_n);
-  ContactForce<D> out{-f_n * c.n + f_t, Spin<D>::Zero()};
+  const Vec<D> f_t = tangential_force<D>(c.n, v_t, p.tangential_stiffness_ratio * p.stiffness, p.tangential_damping,
+                                         c.wet_factor, c.friction, f_n, dt, spring.slip);
+  ContactForce<D> out{-f_n * c.n + f_t, Spin<D>::Zero(), true};
   if (p.rotation)
-    out.torque = moment<D>(c.lever * c.n, f_t) +
-                 rolling_torque<D>(c.omega_rel, p.rolling_damping, p.rolling_friction, c.r_eff, f_n);
+    out.torque = moment<D>(c.lever * c.n, f_t) + rolling_torque<D>(c.omega_rel, p.stiffness, p.rolling_damping,
+                                                                   p.rolling_friction, c.r_eff, f_n, dt, spring.roll);
   return out;
 }
 

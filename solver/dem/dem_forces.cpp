@@ -27,6 +27,16 @@ Vec<D> bridge_force(const Grains<D>& g, std::size_t i, std::size_t j, const Para
   return Vec<D>::Zero();
 }
 
+/// The spring grain i kept of its contact with `key` last step, or a relaxed one for a new contact.
+template <int D>
+Spring<D> previous_spring(const std::vector<Spring<D>>& springs, std::uint32_t key) {
+  for (const Spring<D>& s : springs)
+    if (s.other == key) return s;
+  Spring<D> fresh;
+  fresh.other = key;
+  return fresh;
+}
+
 }  // namespace
 
 template <int D>
@@ -49,7 +59,8 @@ void bin_grains(const Grains<D>& g, const Params& p, CellGrid<D>& grid) {
 }
 
 template <int D>
-ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, const Params& p) {
+ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, const Params& p, double dt,
+                           Spring<D>& spring) {
   ContactForce<D> out{Vec<D>::Zero(), Spin<D>::Zero()};
   const Vec<D> d = g.x[j] - g.x[i];
   const double dist = d.norm();
@@ -65,45 +76,54 @@ ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, con
   const Vec<D> vc = (g.v[i] - g.v[j]) + spin_cross<D>(ai * g.omega[i] + aj * g.omega[j], n);
   const Contact<D> c{n, overlap, vc, g.omega[i] - g.omega[j], 1.0 + g.saturation(i, p) + g.saturation(j, p),
                      p.friction, r_eff, ai};
-  const ContactForce<D> f = contact_force(c, p);
+  const ContactForce<D> f = contact_force(c, p, dt, spring);
   out.force += f.force;
   out.torque = f.torque;
+  out.touching = true;
   return out;
 }
 
 template <int D>
-ContactForce<D> wall_force(const Grains<D>& g, std::size_t i, const Plane<D>& wall, const Params& p) {
+ContactForce<D> wall_force(const Grains<D>& g, std::size_t i, const Plane<D>& wall, const Params& p, double dt,
+                           Spring<D>& spring) {
   const double ai = g.wet_radius(i, p);
   const double overlap = ai - (g.x[i] - wall.point).dot(wall.normal);
   if (overlap <= 0.0) return {Vec<D>::Zero(), Spin<D>::Zero()};
   const Vec<D> n = -wall.normal;
   const Vec<D> vc = g.v[i] + spin_cross<D>(ai * g.omega[i], n);
-  const Contact<D> c{n, overlap, vc, g.omega[i], 1.0 + g.saturation(i, p), p.wall_friction, ai, ai};
-  return contact_force(c, p);
+  const Contact<D> c{n, overlap, vc, g.omega[i], 1.0 + g.saturation(i, p), wall.rough ? p.wall_friction : 0.0, ai, ai};
+  return contact_force(c, p, dt, spring);
 }
 
 template <int D>
 void grain_forces(Grains<D>& g, const CellGrid<D>& grid, const Params& p, const Vec<D>& gravity,
-                  std::span<const Plane<D>> walls) {
+                  std::span<const Plane<D>> walls, double dt) {
   const auto n = static_cast<std::ptrdiff_t>(g.size());
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t s = 0; s < n; ++s) {
-    const auto i = static_cast<std::size_t>(s);
-    Vec<D> f = g.mass(i) * gravity;
-    Spin<D> t = Spin<D>::Zero();
-    grid.for_each_near(g.x[i], [&](std::uint32_t j) {
-      if (j == i) return;
-      const ContactForce<D> c = pair_force(g, i, j, p);
-      f += c.force;
-      t += c.torque;
-    });
-    for (const auto& w : walls) {
-      const ContactForce<D> c = wall_force(g, i, w, p);
-      f += c.force;
-      t += c.torque;
+#pragma omp parallel
+  {
+    std::vector<Spring<D>> kept;  // grain i's contacts of this step, written back to g.springs[i]
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t s = 0; s < n; ++s) {
+      const auto i = static_cast<std::size_t>(s);
+      Vec<D> f = g.mass(i) * gravity;
+      Spin<D> t = Spin<D>::Zero();
+      kept.clear();
+      const auto add = [&](std::uint32_t key, auto&& force_of) {
+        Spring<D> spring = previous_spring(g.springs[i], key);
+        const ContactForce<D> c = force_of(spring);
+        f += c.force;
+        t += c.torque;
+        if (c.touching) kept.push_back(spring);
+      };
+      grid.for_each_near(g.x[i], [&](std::uint32_t j) {
+        if (j != i) add(j, [&](Spring<D>& spring) { return pair_force(g, i, j, p, dt, spring); });
+      });
+      for (std::size_t w = 0; w < walls.size(); ++w)
+        add(wall_key(w), [&](Spring<D>& spring) { return wall_force(g, i, walls[w], p, dt, spring); });
+      g.force[i] = f;
+      g.torque[i] = t;
+      g.springs[i].assign(kept.begin(), kept.end());
     }
-    g.force[i] = f;
-    g.torque[i] = t;
   }
 }
 
@@ -123,17 +143,19 @@ template <int D>
 void step(Grains<D>& g, CellGrid<D>& grid, const Params& p, const Vec<D>& gravity, std::span<const Plane<D>> walls,
           double dt) {
   bin_grains(g, p, grid);
-  grain_forces(g, grid, p, gravity, walls);
+  grain_forces(g, grid, p, gravity, walls, dt);
   integrate(g, p, dt);
 }
 
 #define SC_DEM_FORCES(D)                                                                                       \
   template double interaction_range<D>(const Grains<D>&, const Params&);                                      \
   template void bin_grains<D>(const Grains<D>&, const Params&, CellGrid<D>&);                                \
-  template ContactForce<D> pair_force<D>(const Grains<D>&, std::size_t, std::size_t, const Params&);          \
-  template ContactForce<D> wall_force<D>(const Grains<D>&, std::size_t, const Plane<D>&, const Params&);      \
+  template ContactForce<D> pair_force<D>(const Grains<D>&, std::size_t, std::size_t, const Params&, double,  \
+                                         Spring<D>&);                                                        \
+  template ContactForce<D> wall_force<D>(const Grains<D>&, std::size_t, const Plane<D>&, const Params&, double, \
+                                         Spring<D>&);                                                        \
   template void grain_forces<D>(Grains<D>&, const CellGrid<D>&, const Params&, const Vec<D>&,                \
-                                std::span<const Plane<D>>);                                                  \
+                                std::span<const Plane<D>>, double);                                          \
   template void integrate<D>(Grains<D>&, const Params&, double);                                              \
   template void step<D>(Grains<D>&, CellGrid<D>&, const Params&, const Vec<D>&, std::span<const Plane<D>>, double);
 SC_DEM_FORCES(2)

@@ -20,18 +20,22 @@ double interaction_range(const Grains<D>& g, const Params& p);
 template <int D>
 void bin_grains(const Grains<D>& g, const Params& p, CellGrid<D>& grid);
 
-/// Force and torque on grain i from grain j (contact and bridge); zero when apart.
+/// Force and torque on grain i from grain j (contact and bridge) over a step Δt; zero when apart.
+/// `spring` holds i's springs of the contact (relaxed for a new one) and is advanced by Δt.
 template <int D>
-ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, const Params& p);
+ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, const Params& p, double dt,
+                           Spring<D>& spring);
 
-/// Force and torque on grain i from a wall plane (contact with the wall's friction).
+/// Force and torque on grain i from a wall plane (contact with Params::wall_friction on a rough wall).
 template <int D>
-ContactForce<D> wall_force(const Grains<D>& g, std::size_t i, const Plane<D>& wall, const Params& p);
+ContactForce<D> wall_force(const Grains<D>& g, std::size_t i, const Plane<D>& wall, const Params& p, double dt,
+                           Spring<D>& spring);
 
-/// Sets force and torque of every grain: gravity, pair contacts and bridges, walls.
+/// Sets force and torque of every grain over a step Δt: gravity, pair contacts and bridges, walls;
+/// each grain's contact springs advance and only those of contacts that still touch are kept.
 template <int D>
 void grain_forces(Grains<D>& g, const CellGrid<D>& grid, const Params& p, const Vec<D>& gravity,
-                  std::span<const Plane<D>> walls);
+                  std::span<const Plane<D>> walls, double dt);
 
 /// Symplectic Euler: v += Δt F/m, ω += Δt T/I, then x += Δt v.
 template <int D>

@@ -20,10 +20,11 @@ struct Params {
   double damping = 0.0;              ///< normal dashpot k_d of dry grains [N s/m]
   double friction = 0.5;             ///< grain-grain Coulomb coefficient μ
   double wall_friction = 0.5;        ///< grain-wall Coulomb coefficient
-  double tangential_damping = 0.0;   ///< slope γ_t of the regularised Coulomb law [N s/m]
+  double tangential_stiffness_ratio = 2.0 / 7.0;  ///< k_t/k_s of the tangential spring
+  double tangential_damping = 0.0;   ///< tangential dashpot γ_t [N s/m]
   bool rotation = true;              ///< grains carry angular velocity (torques of tangential forces)
   double rolling_friction = 0.0;     ///< μ_r: rolling torque bound μ_r R_eff |F_n| (0 = off)
-  double rolling_damping = 0.0;      ///< slope of the regularised rolling torque [N m s]
+  double rolling_damping = 0.0;      ///< rolling dashpot γ_r [N m s]
   // --- wetness --------------------------------------------------------------------------------
   double water_density = 1000.0;     ///< [kg/m^3]
   double capacity_fraction = 0.4;    ///< water a grain holds at s = 1, as a fraction of its volume

@@ -4,6 +4,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "core/types.hpp"
@@ -28,12 +29,26 @@ inline Spin<D> moment(const Vec<D>& r, const Vec<D>& f) {
   else return r.cross(f);
 }
 
-/// A fixed contact plane (a tank wall): a point on it and its unit normal into the domain.
+/// A fixed contact plane (a tank wall): a point on it, its unit normal into the domain, and whether
+/// it is rough (Params::wall_friction) or smooth (no tangential force).
 template <int D>
 struct Plane {
   Vec<D> point;
   Vec<D> normal;
+  bool rough = true;
 };
+
+/// What a contact remembers from step to step, kept by grain i (Grains::springs): the tangential
+/// spring's stretch ξ and the rolling spring's twist ψ, both from i's side.
+template <int D>
+struct Spring {
+  std::uint32_t other = 0;          ///< the other grain, or wall_key(w) for wall w
+  Vec<D> slip = Vec<D>::Zero();     ///< ξ [m]
+  Spin<D> roll = Spin<D>::Zero();   ///< ψ [rad]
+};
+
+/// The key of wall w in Spring::other (grain indices count up from 0, walls down from the top).
+inline std::uint32_t wall_key(std::size_t w) { return 0xffffffffu - static_cast<std::uint32_t>(w); }
 
 template <int D>
 struct Grains {
@@ -44,6 +59,7 @@ struct Grains {
   std::vector<double> radius;     ///< dry radius R [m]
   std::vector<double> dry_mass;   ///< [kg] (2-D: per metre of depth)
   std::vector<double> water;      ///< water held [kg]
+  std::vector<std::vector<Spring<D>>> springs;  ///< each grain's contacts of the last step, from its side
 
   std::size_t size() const { return x.size(); }
   /// Appends a grain at rest; its dry mass is density times its volume.
@@ -51,6 +67,7 @@ struct Grains {
     x.push_back(at); v.push_back(Vec<D>::Zero()); force.push_back(Vec<D>::Zero());
     omega.push_back(Spin<D>::Zero()); torque.push_back(Spin<D>::Zero());
     radius.push_back(r); dry_mass.push_back(density * volume_of(r)); water.push_back(0.0);
+    springs.emplace_back();
     return x.size() - 1;
   }
   static double volume_of(double r) { return D == 3 ? 4.0 / 3.0 * pi * r * r * r : pi * r * r; }

@@ -61,7 +61,7 @@ double total_water(const ParticleView<D>& view) {
 
 /// Wall-clock seconds a method spent in one of its named stages since the run started (or the last
 /// reset_stage_times), and the stage's work units where the method counts them (FLIP's projection:
-/// conjugate-gradient iterations; 0: not counted).
+/// conjugate-gradient iterations; DEM's contacts: contact steps; 0: not counted).
 struct StageTime {
   std::string name;
   double seconds = 0.0;

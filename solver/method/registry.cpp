@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "dem/dem_method.hpp"
 #include "flip/flip_method.hpp"
 #include "io/checkpoint.hpp"
 #include "simulator/sph_method.hpp"
@@ -22,6 +23,7 @@ struct Entry {
 };
 
 void check_flip(const CaseSpec& spec) { read_flip_params(spec); }
+void check_dem(const CaseSpec& spec) { read_dem_params(spec); }
 
 /// Every method of this build. A new method adds its line here (and its own folder under solver/).
 template <int D>
@@ -29,6 +31,7 @@ const std::vector<Entry<D>>& entries() {
   static const std::vector<Entry<D>> table = {
       {"sph", make_sph_method<D>, resume_sph_method<D>, nullptr},
       {"flip", make_flip_method<D>, nullptr, check_flip},
+      {"dem", make_dem_method<D>, nullptr, check_dem},
   };
   return table;
 }

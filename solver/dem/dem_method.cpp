@@ -1,0 +1,227 @@
+#include "dem/dem_method.hpp"
+
+#include <cmath>
+#include <random>
+
+#include "core/checksum.hpp"
+#include "core/errors.hpp"
+#include "method/view_vtu.hpp"
+#include "scene/scene_builder.hpp"
+
+namespace sc {
+
+namespace {
+
+/// Height of the material along gravity (axis D − 1): the top of the highest sand block above the
+/// bottom of the lowest [m].
+double material_height(const CaseSpec& spec, int dim) {
+  double lo = INFINITY, hi = -INFINITY;
+  for (const BlockSpec& b : spec.blocks) {
+    lo = std::min(lo, b.min[dim - 1]);
+    hi = std::max(hi, b.max[dim - 1]);
+  }
+  return hi - lo;
+}
+
+/// The tank's closed sides as contact planes through its faces, normals into the tank.
+template <int D>
+std::vector<dem::Plane<D>> tank_planes(const TankSpec& tank) {
+  std::vector<dem::Plane<D>> walls;
+  for (int d = 0; d < D; ++d)
+    for (const int outward : {-1, 1}) {
+      if (!tank.closed(d, outward)) continue;
+      dem::Plane<D> w{Vec<D>::Zero(), Vec<D>::Zero(), tank.rule(d, outward) == WallRule::NoSlip};
+      w.point[d] = outward < 0 ? tank.min[d] : tank.max[d];
+      w.normal[d] = -outward;
+      walls.push_back(w);
+    }
+  return walls;
+}
+
+/// One grain per lattice site of spacing dx in [lo, hi], radius 0.5 dx (1 − p u) with u uniform in
+/// [0, 1), mass ρ dx^D, its centre moved off the site by at most the room its radius leaves inside
+/// the site's inscribed sphere (so no two grains touch at the start and no stack stands perfectly
+/// aligned).
+template <int D>
+void seed_grains(const Vec<D>& lo, const Vec<D>& hi, double dx, double rho, double p, unsigned seed,
+                 dem::Grains<D>& g) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::array<long, D> n{};
+  long count = 1;
+  for (int d = 0; d < D; ++d) {
+    n[d] = std::lround((hi[d] - lo[d]) / dx);
+    count *= n[d];
+  }
+  const double mass = rho * std::pow(dx, D);
+  for (long k = 0; k < count; ++k) {
+    const double r = 0.5 * dx * (1.0 - p * uniform(rng));
+    const double room = (0.5 * dx - r) / std::sqrt(static_cast<double>(D));
+    Vec<D> x;
+    long rest = k;
+    for (int d = 0; d < D; ++d) {
+      x[d] = lo[d] + (static_cast<double>(rest % n[d]) + 0.5) * dx + room * (2.0 * uniform(rng) - 1.0);
+      rest /= n[d];
+    }
+    g.add(x, r, mass / dem::Grains<D>::volume_of(r));
+  }
+}
+
+/// Contact parameters of the case: the spring holds the material's full height with the asked
+/// overlap; the normal dashpot gives the asked restitution for a pair of equal grains, and the
+/// tangential and rolling dashpots the same damping ratio ζ for their springs (pair of equal grains:
+/// m_eff = m/2, I_eff = I/2, R_eff = R/2).
+template <int D>
+dem::Params contact_params(const CaseSpec& spec, const DemCaseParams& own, double dx, const dem::Grains<D>& g) {
+  const double m = g.mass(0), r = 0.5 * dx;
+  const double layers = std::max(1.0, material_height(spec, D) / dx);
+  dem::Params p;
+  p.stiffness = layers * m * to_vec<D>(spec.gravity).norm() / (own.overlap * r);
+  p.damping = dem::damping_for_restitution(own.restitution, p.stiffness, 0.5 * m);
+  const double zeta = p.damping / (2.0 * std::sqrt(p.stiffness * 0.5 * m));
+  p.tangential_damping = 2.0 * zeta * std::sqrt(p.tangential_stiffness_ratio * p.stiffness * 0.5 * m);
+  const double r_eff = 0.5 * r, k_roll = 2.25 * p.stiffness * own.rolling_friction * own.rolling_friction * r_eff * r_eff;
+  p.rolling_damping = 2.0 * zeta * std::sqrt(k_roll * 0.5 * g.inertia(0));
+  p.friction = own.friction;
+  p.wall_friction = own.wall_friction;
+  p.rolling_friction = own.rolling_friction;
+  return p;
+}
+
+}  // namespace
+
+DemCaseParams read_dem_params(const CaseSpec& spec) {
+  const json own = spec.methods.contains("dem") ? spec.methods.at("dem") : json::object();
+  if (!own.is_object()) throw InputError(spec.file, "/methods/dem", "must be an object of DEM's parameters");
+  JsonObject o(own, "/methods/dem", spec.file);
+  DemCaseParams p;
+  p.friction = o.non_negative("friction", p.friction);
+  p.rolling_friction = o.non_negative("rolling_friction", p.rolling_friction);
+  p.wall_friction = o.non_negative("wall_friction", p.friction);
+  p.restitution = o.in_range("restitution", 0.0, 1.0, false, p.restitution);
+  if (p.restitution <= 0.0) o.fail("restitution", "must be in (0, 1]");
+  p.overlap = o.in_range("overlap", 0.0, 0.1, true, p.overlap);
+  p.polydispersity = o.in_range("polydispersity", 0.0, 0.5, false, p.polydispersity);
+  o.finish();
+  if (!spec.tank) throw InputError(spec.file, "/tank", "method \"dem\" needs a tank (its closed sides are the contact walls)");
+  if (!spec.meshes.empty()) throw InputError(spec.file, "/meshes", "method \"dem\" fills blocks only, not meshes");
+  if (spec.porous) throw InputError(spec.file, "/porous", "method \"dem\" runs dry grains; it has no porous flow");
+  if (spec.adaptive) throw InputError(spec.file, "/adaptive", "method \"dem\" has no split and merge");
+  double g2 = 0.0;
+  for (const double g : spec.gravity) g2 += g * g;
+  if (g2 == 0.0) throw InputError(spec.file, "/gravity", "method \"dem\" needs gravity (the weight of the material sets the contact stiffness)");
+  if (spec.blocks.empty()) throw InputError(spec.file, "/blocks", "method \"dem\" needs at least one sand block");
+  for (std::size_t b = 0; b < spec.blocks.size(); ++b)
+    if (spec.blocks[b].fill != BlockFill::Sand)
+      throw InputError(spec.file, "/blocks/" + std::to_string(b) + "/phase",
+                       "method \"dem\" runs sand blocks only (its coupling with SPH water is not behind the seam)");
+  return p;
+}
+
+template <int D>
+DemMethod<D>::DemMethod(dem::Grains<D> grains, const dem::Params& params, std::vector<dem::Plane<D>> walls,
+                        const Vec<D>& gravity, double dt, int substeps)
+    : grains_(std::move(grains)),
+      last_good_(grains_),
+      params_(params),
+      walls_(std::move(walls)),
+      gravity_(gravity),
+      dt_(dt),
+      substeps_(substeps) {}
+
+template <int D>
+double DemMethod<D>::step() {
+  last_good_ = grains_;
+  const double h = dt_ / substeps_;
+  for (int s = 0; s < substeps_; ++s) {
+    {
+      auto scope = timers_.time(dem::DemStage::Contacts);
+      dem::bin_grains(grains_, params_, cells_);
+      dem::grain_forces(grains_, cells_, params_, gravity_, std::span<const dem::Plane<D>>(walls_), h);
+    }
+    auto scope = timers_.time(dem::DemStage::Integration);
+    dem::integrate(grains_, params_, h);
+  }
+  for (std::size_t i = 0; i < grains_.size(); ++i)
+    if (!grains_.x[i].allFinite() || !grains_.v[i].allFinite())
+      throw BlowUpError(steps_, time_, static_cast<long>(i), "sand", grains_.x[i].allFinite() ? "v" : "x", "not finite");
+  time_ += dt_;
+  ++steps_;
+  return dt_;
+}
+
+template <int D>
+ParticleView<D> DemMethod<D>::view_of(const dem::Grains<D>& g) const {
+  mass_.resize(g.size());
+  density_.resize(g.size());
+  support_.resize(g.size());
+  phase_.assign(g.size(), static_cast<std::uint8_t>(Phase::Sand));
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    mass_[i] = g.mass(i);
+    density_[i] = g.mass(i) / g.volume(i);
+    support_[i] = g.radius[i];
+  }
+  ParticleView<D> view;
+  view.x = {g.x.data(), g.size()};
+  view.v = {g.v.data(), g.size()};
+  view.m = mass_;
+  view.phase = phase_;
+  view.density = density_;
+  view.support = support_;
+  return view;
+}
+
+template <int D>
+ParticleView<D> DemMethod<D>::particles() const {
+  return view_of(grains_);
+}
+
+template <int D>
+std::string DemMethod<D>::checksum() const {
+  return state_checksum<D>(std::span<const Vec<D>>(grains_.x.data(), grains_.size()),
+                           std::span<const Vec<D>>(grains_.v.data(), grains_.size()));
+}
+
+template <int D>
+std::vector<StageTime> DemMethod<D>::stage_times() const {
+  std::vector<StageTime> out;
+  for (std::size_t s = 0; s < dem::dem_stage_names.size(); ++s)
+    out.push_back({std::string(dem::dem_stage_names[s]), timers_.seconds(static_cast<dem::DemStage>(s)),
+                   static_cast<dem::DemStage>(s) == dem::DemStage::Contacts ? steps_ * substeps_ : 0});
+  return out;
+}
+
+template <int D>
+std::string DemMethod<D>::vtu_frame() const {
+  return vtu_document<D>(particles());
+}
+
+template <int D>
+std::string DemMethod<D>::last_good_frame() const {
+  return vtu_document<D>(view_of(last_good_));
+}
+
+template <int D>
+void DemMethod<D>::write_checkpoint(const std::string&, const json&) const {
+  throw std::logic_error("method \"dem\" writes no checkpoints");
+}
+
+template <int D>
+std::unique_ptr<Method<D>> make_dem_method(const CaseSpec& spec, double dx) {
+  const DemCaseParams own = read_dem_params(spec);
+  dem::Grains<D> g;
+  for (std::size_t b = 0; b < spec.blocks.size(); ++b)
+    seed_grains<D>(to_vec<D>(spec.blocks[b].min), to_vec<D>(spec.blocks[b].max), dx, spec.sand.rest_density,
+                   own.polydispersity, static_cast<unsigned>(b + 1), g);
+  const dem::Params p = contact_params<D>(spec, own, dx, g);
+  const int substeps = static_cast<int>(std::ceil(spec.dt_max / dem::stable_step(g, p) - 1e-9));
+  return std::make_unique<DemMethod<D>>(std::move(g), p, tank_planes<D>(*spec.tank), to_vec<D>(spec.gravity),
+                                        spec.dt_max, std::max(1, substeps));
+}
+
+template class DemMethod<2>;
+template class DemMethod<3>;
+template std::unique_ptr<Method<2>> make_dem_method<2>(const CaseSpec&, double);
+template std::unique_ptr<Method<3>> make_dem_method<3>(const CaseSpec&, double);
+
+}  // namespace sc
