@@ -166,7 +166,7 @@ BOOST_AUTO_TEST_CASE(an_unknown_method_is_rejected_with_the_case_file_and_json_p
   } catch (const InputError& e) {
     BOOST_TEST(e.json_path() == "/methods/no_such_method");
   }
-  BOOST_TEST(method_names() == (std::vector<std::string>{"sph", "flip"}));
+  BOOST_TEST(method_names() == (std::vector<std::string>{"sph", "flip", "dem"}));
 }
 
 BOOST_AUTO_TEST_CASE(method_flag_must_name_a_method_the_case_supports) {
