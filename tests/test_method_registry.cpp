@@ -288,8 +288,7 @@ BOOST_AUTO_TEST_CASE(an_unknown_flip_parameter_is_rejected_with_its_path) {
   }
 }
 
-// DEM through the seam (solver/dem/dem_method.hpp): one grain per lattice site carrying the bulk
-// mass of its site (the column weighs ρ L H), the grains fall onto the floor and push no deeper than
+// DEM through the seam (solver/dem/dem_method.hpp): the column packed in its mould weighs ρ L H, the grains fall onto the floor and push no deeper than
 // the overlap the stiffness was set for, the run times its contact steps and is the same bitwise on
 // one and two threads.
 BOOST_AUTO_TEST_CASE(a_dem_run_built_through_the_registry_settles_on_its_springs) {
@@ -303,7 +302,8 @@ BOOST_AUTO_TEST_CASE(a_dem_run_built_through_the_registry_settles_on_its_springs
     BOOST_TEST(!method_writes_checkpoints("dem"));
     double mass = 0.0;
     for (std::size_t i = 0; i < run->particles().size(); ++i) mass += run->particles().m[i];
-    BOOST_TEST(run->particles().size() == 100u);
+    BOOST_TEST(run->particles().size() > 80u);  // the poured column: about one grain per 0.01 m site
+    BOOST_TEST(run->particles().size() < 120u);
     BOOST_TEST(mass == 0.1 * 0.1 * 2650.0, boost::test_tools::tolerance(1e-12));
     for (int k = 0; k < 1000; ++k) run->step();
     const ParticleView<2> view = run->particles();

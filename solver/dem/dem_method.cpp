@@ -88,6 +88,65 @@ dem::Params contact_params(const CaseSpec& spec, const DemCaseParams& own, doubl
   return p;
 }
 
+/// Kinetic energy of the grains, translation and rotation [J].
+template <int D>
+double kinetic_energy(const dem::Grains<D>& g) {
+  double e = 0.0;
+  for (std::size_t i = 0; i < g.size(); ++i)
+    e += 0.5 * (g.mass(i) * g.v[i].squaredNorm() + g.inertia(i) * g.omega[i].squaredNorm());
+  return e;
+}
+
+/// The grains of one sand block, packed as a granular column is built: grains seeded on the lattice
+/// over the block and a third again above it settle under gravity in a smooth mould of the block's
+/// footprint (frictionless planes at its sides and bottom) until at rest; those whose centre lies
+/// above the block's top less half a spacing are removed, and the rest share the block's mass ρ V
+/// equally, at rest and without contact history. The column so starts as dense as a poured one, as
+/// the other methods' columns do, instead of compacting by a tenth or more when released.
+template <int D>
+dem::Grains<D> packed_block(const CaseSpec& spec, const DemCaseParams& own, double dx, std::size_t b) {
+  const BlockSpec& block = spec.blocks[b];
+  Vec<D> lo = to_vec<D>(block.min), hi = to_vec<D>(block.max), top = hi;
+  const double rows = std::round((hi[D - 1] - lo[D - 1]) / dx);
+  top[D - 1] = lo[D - 1] + (rows + std::ceil(rows / 3.0) + 1.0) * dx;
+  dem::Grains<D> g;
+  seed_grains<D>(lo, top, dx, spec.sand.rest_density, own.polydispersity, static_cast<unsigned>(b + 1), g);
+  dem::Params p = contact_params<D>(spec, own, dx, g);
+  std::vector<dem::Plane<D>> mould;
+  for (int d = 0; d < D; ++d)
+    for (const int outward : {-1, 1}) {
+      if (d == D - 1 && outward > 0) continue;  // open top
+      dem::Plane<D> w{Vec<D>::Zero(), Vec<D>::Zero(), false};
+      w.point[d] = outward < 0 ? lo[d] : hi[d];
+      w.normal[d] = -outward;
+      mould.push_back(w);
+    }
+  const Vec<D> gravity = to_vec<D>(spec.gravity);
+  const double h = dem::stable_step(g, p), weight_scale = g.size() * g.mass(0) * gravity.norm() * (top - lo)[D - 1];
+  dem::CellGrid<D> cells;
+  for (int chunk = 0; chunk < 200; ++chunk) {  // at most 200 x 200 contact steps
+    for (int s = 0; s < 200; ++s) dem::step(g, cells, p, gravity, std::span<const dem::Plane<D>>(mould), h);
+    if (kinetic_energy(g) < 1e-10 * weight_scale) break;
+  }
+  dem::Grains<D> kept;
+  for (std::size_t i = 0; i < g.size(); ++i)
+    if (g.x[i][D - 1] <= hi[D - 1] - 0.5 * dx) kept.add(g.x[i], g.radius[i], 1.0);
+  double volume = 1.0;
+  for (int d = 0; d < D; ++d) volume *= hi[d] - lo[d];
+  const double mass = spec.sand.rest_density * volume / static_cast<double>(kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) kept.dry_mass[i] = mass;
+  return kept;
+}
+
+/// Appends the grains of `from` to `to`, in order.
+template <int D>
+void append(const dem::Grains<D>& from, dem::Grains<D>& to) {
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    const std::size_t k = to.add(from.x[i], from.radius[i], 1.0);
+    to.dry_mass[k] = from.dry_mass[i];
+  }
+}
+
 }  // namespace
 
 DemCaseParams read_dem_params(const CaseSpec& spec) {
@@ -210,9 +269,7 @@ template <int D>
 std::unique_ptr<Method<D>> make_dem_method(const CaseSpec& spec, double dx) {
   const DemCaseParams own = read_dem_params(spec);
   dem::Grains<D> g;
-  for (std::size_t b = 0; b < spec.blocks.size(); ++b)
-    seed_grains<D>(to_vec<D>(spec.blocks[b].min), to_vec<D>(spec.blocks[b].max), dx, spec.sand.rest_density,
-                   own.polydispersity, static_cast<unsigned>(b + 1), g);
+  for (std::size_t b = 0; b < spec.blocks.size(); ++b) append<D>(packed_block<D>(spec, own, dx, b), g);
   const dem::Params p = contact_params<D>(spec, own, dx, g);
   const int substeps = static_cast<int>(std::ceil(spec.dt_max / dem::stable_step(g, p) - 1e-9));
   return std::make_unique<DemMethod<D>>(std::move(g), p, tank_planes<D>(*spec.tank), to_vec<D>(spec.gravity),

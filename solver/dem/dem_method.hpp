@@ -1,6 +1,6 @@
 // DEM grains after Rungjiratananon et al. 2008 behind the method seam: DemMethod<D> steps the grains
-// of this folder as a Method<D>, one grain per lattice site of a case's sand blocks, the tank's
-// closed sides as contact planes, with DEM's own numbers from the case's "methods": {"dem": {...}}
+// of this folder as a Method<D>, a case's sand blocks packed as poured columns, the tank's closed
+// sides as contact planes, with DEM's own numbers from the case's "methods": {"dem": {...}}
 // object (cases/README.md, docs/dem.md). The runs behind the seam are dry: the wetness, bridges and
 // SPH-water coupling of this folder are exercised by their unit tests (tests/test_dem.cpp).
 #pragma once
@@ -89,8 +89,9 @@ class DemMethod final : public Method<D> {
   mutable std::vector<std::uint8_t> phase_;
 };
 
-/// DEM at t = 0: the case's sand blocks seeded one grain per lattice site of spacing dx (radii drawn
-/// per block from a fixed seed), each grain carrying the bulk mass ρ dx^D of its site.
+/// DEM at t = 0: each of the case's sand blocks packed by settling grains seeded at spacing dx
+/// (radii drawn per block from a fixed seed) in a mould of the block, trimmed to its height, the
+/// block's mass ρ V shared equally by its grains.
 template <int D>
 std::unique_ptr<Method<D>> make_dem_method(const CaseSpec& spec, double dx);
 
