@@ -28,7 +28,7 @@ void extrapolate(const MacGrid<D>& grid, FaceField<D> known, int layers, FaceFie
     const long faces = static_cast<long>(u[a].size());
     for (int layer = 0; layer < layers; ++layer) {
       const std::vector<double> old_u = u[a], old_known = known[a];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 4096)
       for (long k = 0; k < faces; ++k) {
         if (old_known[k] != 0.0) continue;
         const Index<D> f = MacGrid<D>::unflat(static_cast<std::size_t>(k), dims);

@@ -60,7 +60,7 @@ SandCells<D> classify_sand(const MacGrid<D>& grid, const CellState<D>& cells, co
   out.rigid.assign(n, 0);
   out.stress.assign(n, Mat<D>::Zero());
   const double sin_phi = sand.sin_phi(), strength = yield_strength_factor(sand.yield_surface);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 4096)
   for (long k = 0; k < static_cast<long>(n); ++k) {
     if (cells.label[k] != Cell::Sand) continue;
     const Mat<D> strain = cell_strain_rate<D>(grid, cells, u, MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n));
@@ -88,7 +88,7 @@ void apply_frictional_stress(const MacGrid<D>& grid, const CellState<D>& cells, 
   };
   for (int a = 0; a < D; ++a) {
     const Index<D> dims = grid.face_dims(a);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 4096)
     for (long k = 0; k < static_cast<long>(u[a].size()); ++k) {
       const Index<D> c1 = MacGrid<D>::unflat(static_cast<std::size_t>(k), dims);
       if (grid.is_wall_face(a, c1)) continue;
@@ -128,7 +128,7 @@ void wall_friction(const MacGrid<D>& grid, const CellState<D>& cells, const Sand
         if (b == a || mu <= 0.0) continue;
         const int layer = side ? grid.n[a] - 1 : 0;
         const Index<D> dims = grid.face_dims(b);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 4096)
         for (long k = 0; k < static_cast<long>(u[b].size()); ++k) {
           const Index<D> c1 = MacGrid<D>::unflat(static_cast<std::size_t>(k), dims);
           if (c1[a] != layer || grid.is_wall_face(b, c1)) continue;

@@ -92,7 +92,7 @@ void particles_to_grid(const MacGrid<D>& grid, const ParticleBins<D>& bins, std:
     u[a].resize(grid.face_count(a));
     weight[a].resize(grid.face_count(a));
     const long lines = static_cast<long>(grid.face_count(a) / static_cast<std::size_t>(dims[0]));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 16)
     for (long line = 0; line < lines; ++line) {  // the faces of one row along axis 0
       const std::size_t k0 = static_cast<std::size_t>(line) * static_cast<std::size_t>(dims[0]);
       Index<D> f = MacGrid<D>::unflat(k0, dims);
@@ -171,7 +171,7 @@ std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& 
   for (const double r : radius) mean_radius += r;
   const double reach = 4.0 * mean_radius / static_cast<double>(radius.size());  // twice the mean spacing
   const long n = static_cast<long>(phi.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 4096)
   for (long k = 0; k < n; ++k) {
     if (is_fluid(label[k])) continue;
     const Index<D> c = MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n);
