@@ -120,9 +120,8 @@ double FlipSolver<D>::step() {
   sand_step(dt, before_projection);
   {
     auto scope = timers_.time(FlipStage::Advection);
-    const FaceField<D> known = known_faces<D>(grid_, cells_.label);
-    extrapolate<D>(grid_, known, params_.extrapolation_layers, u_);
-    extrapolate<D>(grid_, known, params_.extrapolation_layers, u_old_);
+    FaceField<D>* const fields[] = {&u_, &u_old_};
+    extrapolate<D>(grid_, cells_.label, params_.extrapolation_layers, fields);
     update_particles(dt);
   }
   time_ += dt;

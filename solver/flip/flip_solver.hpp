@@ -45,7 +45,7 @@ struct FlipParams {
   double dt_max = 1e-3;                                 ///< [s]
   double cg_tolerance = 1e-12;                          ///< relative residual of the pressure solve
   long cg_max_iterations = 2000;
-  int extrapolation_layers = 3;                         ///< rings of faces the velocity is extended into air
+  int extrapolation_layers = 3;                         ///< cell widths the velocity is extended into air
 };
 
 /// The particles of the method, laid out as ParticleView<D> (solver/method/method.hpp) expects.
