@@ -8,69 +8,7 @@ namespace sc::flip {
 
 namespace {
 
-/// One axis-aligned box of a grid of `dims` (the indices lo .. hi, inclusive) with the flat-index
-/// stride of each axis.
-template <int D>
-struct Box {
-  Index<D> dims, lo, hi;
-  std::array<long, D> stride{};
-
-  Box(const Index<D>& d, const Index<D>& l, const Index<D>& h) : dims(d), lo(l), hi(h) {
-    stride[0] = 1;
-    for (int a = 1; a < D; ++a) stride[a] = stride[a - 1] * dims[a - 1];
-  }
-  bool empty() const {
-    for (int a = 0; a < D; ++a)
-      if (lo[a] > hi[a]) return true;
-    return false;
-  }
-  /// Calls body(f, k) for every index f of the box (k its flat index), along axis a ascending when
-  /// bit a of `order` is 0, else descending: the 2^D orders of a fast sweep.
-  template <class Body>
-  void sweep(unsigned order, Body&& body) const {
-    if (empty()) return;
-    Index<D> f{};
-    long k = 0;
-    for (int a = 0; a < D; ++a) {
-      f[a] = (order >> a) & 1 ? hi[a] : lo[a];
-      k += f[a] * stride[a];
-    }
-    while (true) {
-      body(f, k);
-      int a = 0;
-      for (; a < D; ++a) {
-        const bool down = (order >> a) & 1;
-        if (down ? f[a] > lo[a] : f[a] < hi[a]) {
-          f[a] += down ? -1 : 1;
-          k += down ? -stride[a] : stride[a];
-          break;
-        }
-        const int start = down ? hi[a] : lo[a];
-        k -= (f[a] - start) * stride[a];
-        f[a] = start;
-      }
-      if (a == D) return;
-    }
-  }
-};
-
 constexpr double wall = -1.0;  // φ of a wall face: no source, never changed
-
-/// The box of the fluid cells (empty when there is none).
-template <int D>
-std::pair<Index<D>, Index<D>> fluid_box(const MacGrid<D>& grid, const std::vector<Cell>& label) {
-  Index<D> lo = grid.n, hi{};
-  hi.fill(-1);
-  for (std::size_t k = 0; k < label.size(); ++k) {
-    if (!is_fluid(label[k])) continue;
-    const Index<D> c = MacGrid<D>::unflat(k, grid.n);
-    for (int d = 0; d < D; ++d) {
-      lo[d] = std::min(lo[d], c[d]);
-      hi[d] = std::max(hi[d], c[d]);
-    }
-  }
-  return {lo, hi};
-}
 
 /// Godunov upwind solution of |∇φ| = 1 (unit spacing) from the smallest neighbour value per axis.
 template <int D>
@@ -90,7 +28,7 @@ double eikonal(std::array<double, D> m) {
 /// The distance φ per face of component a in cell widths, capped at `far`: 0 on the faces next to
 /// a fluid cell, `wall` on the tank's wall faces, within `box` by fast sweeping, `far` outside it.
 template <int D>
-std::vector<double> face_distance(const MacGrid<D>& grid, const std::vector<Cell>& label, int a, const Box<D>& box,
+std::vector<double> face_distance(const MacGrid<D>& grid, const std::vector<Cell>& label, int a, const IndexBox<D>& box,
                                   double far) {
   std::vector<double> phi(grid.face_count(a), far);
   const Index<D> dims = grid.face_dims(a);
@@ -98,7 +36,7 @@ std::vector<double> face_distance(const MacGrid<D>& grid, const std::vector<Cell
     Index<D> lo{}, hi = dims;
     for (int d = 0; d < D; ++d) --hi[d];
     lo[a] = hi[a] = side;
-    Box<D>(dims, lo, hi).sweep(0, [&](const Index<D>&, long k) { phi[k] = wall; });
+    IndexBox<D>(dims, lo, hi).sweep(0, [&](const Index<D>&, long k) { phi[k] = wall; });
   }
   box.sweep(0, [&](const Index<D>& f, long k) {
     if (phi[k] == wall) return;
@@ -123,7 +61,7 @@ std::vector<double> face_distance(const MacGrid<D>& grid, const std::vector<Cell
 /// u = Σ_d w_d u_d / Σ_d w_d on the faces of 0 < φ ≤ layers, in the 2^D sweep orders, then 0 on the
 /// faces of φ > layers.
 template <int D>
-void extend(const Box<D>& box, const std::vector<double>& phi, double layers, std::vector<double>& u) {
+void extend(const IndexBox<D>& box, const std::vector<double>& phi, double layers, std::vector<double>& u) {
   box.sweep(0, [&](const Index<D>&, long k) {
     if (phi[k] > 0.0) u[k] = 0.0;
   });
@@ -151,17 +89,17 @@ void extend(const Box<D>& box, const std::vector<double>& phi, double layers, st
 template <int D>
 void extrapolate(const MacGrid<D>& grid, const std::vector<Cell>& label, int layers,
                  std::span<FaceField<D>* const> fields) {
-  const auto [fluid_lo, fluid_hi] = fluid_box<D>(grid, label);
+  const IndexBox<D> fluid = IndexBox<D>::around(grid.n, [&](std::size_t k) { return is_fluid(label[k]); });
   const double far = layers + 1.0;
 #pragma omp parallel for schedule(dynamic, 1)
   for (int a = 0; a < D; ++a) {
     const Index<D> dims = grid.face_dims(a);
     Index<D> lo{}, hi{};
     for (int d = 0; d < D; ++d) {
-      lo[d] = std::max(0, fluid_lo[d] - layers - 1);
-      hi[d] = std::min(dims[d] - 1, fluid_hi[d] + (d == a ? 1 : 0) + layers + 1);
+      lo[d] = std::max(0, fluid.lo[d] - layers - 1);
+      hi[d] = std::min(dims[d] - 1, fluid.hi[d] + (d == a ? 1 : 0) + layers + 1);
     }
-    const Box<D> box(dims, lo, hi);
+    const IndexBox<D> box(dims, lo, hi);
     const std::vector<double> phi = face_distance<D>(grid, label, a, box, far);
     for (FaceField<D>* u : fields) extend<D>(box, phi, layers, (*u)[a]);
   }

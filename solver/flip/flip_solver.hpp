@@ -110,6 +110,7 @@ class FlipSolver {
   ParticleBins<D> bins_;
   FaceField<D> u_, u_old_, weight_;
   CellState<D> cells_;
+  SandCells<D> sand_;
   std::vector<double> p_;
   ProjectionStats stats_;
   double time_ = 0.0;
