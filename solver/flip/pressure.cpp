@@ -225,11 +225,13 @@ ProjectionStats solve_pcg(const PoissonRows<D>& A, const std::vector<double>& b,
 template <int D>
 ProjectionStats project(const MacGrid<D>& grid, const CellState<D>& cells, double dt, double tolerance,
                         long max_iterations, FaceField<D>& u, std::vector<double>& p) {
-  for (int a = 0; a < D; ++a) {  // static walls: u·n = 0
-    const Index<D> dims = grid.face_dims(a);
-    for (std::size_t k = 0; k < u[a].size(); ++k)
-      if (grid.is_wall_face(a, MacGrid<D>::unflat(k, dims))) u[a][k] = 0.0;
-  }
+  for (int a = 0; a < D; ++a)  // static walls: u·n = 0
+    for (const int side : {0, grid.n[a]}) {
+      Index<D> lo{}, hi = grid.n;
+      for (int d = 0; d < D; ++d) hi[d] -= d == a ? 0 : 1;
+      lo[a] = hi[a] = side;
+      IndexBox<D>(grid.face_dims(a), lo, hi).sweep(0, [&](const Index<D>&, std::size_t k) { u[a][k] = 0.0; });
+    }
   p.assign(grid.cell_count(), 0.0);
   const PoissonRows<D> A = assemble<D>(grid, cells, dt);
   if (A.size() == 0) return {};
@@ -240,19 +242,21 @@ ProjectionStats project(const MacGrid<D>& grid, const CellState<D>& cells, doubl
   if (!std::isfinite(stats.residual)) throw std::runtime_error("flip projection: the pressure solve diverged");
   for (std::size_t r = 0; r < A.size(); ++r) p[A.cell[r]] = sol[r];
 
-  for (int a = 0; a < D; ++a) {
-    const Index<D> dims = grid.face_dims(a);
-    const long faces = static_cast<long>(u[a].size());
-#pragma omp parallel for schedule(dynamic, 4096)
-    for (long k = 0; k < faces; ++k) {
-      Index<D> f = MacGrid<D>::unflat(static_cast<std::size_t>(k), dims);
-      const double rho = face_density<D>(grid, cells, a, f);
-      if (rho == 0.0) continue;
-      const double theta = surface_fraction<D>(grid, cells, a, f);
-      const double p_high = p[grid.cell(f)];
-      --f[a];
-      u[a][k] -= dt / (rho * theta * grid.dx) * (p_high - p[grid.cell(f)]);
-    }
+  const IndexBox<D> fluid = IndexBox<D>::around(grid.n, [&](std::size_t c) { return is_fluid(cells.label[c]); });
+  for (int a = 0; a < D; ++a) {  // the faces next to fluid
+    Index<D> hi = fluid.hi;
+    ++hi[a];
+    const IndexBox<D> box(grid.face_dims(a), fluid.lo, hi);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int layer = box.lo[D - 1]; layer <= box.hi[D - 1]; ++layer)
+      box.slab(layer).sweep(0, [&](const Index<D>& face, std::size_t k) {
+        const double rho = face_density<D>(grid, cells, a, face);
+        if (rho == 0.0) return;
+        const double theta = surface_fraction<D>(grid, cells, a, face);
+        Index<D> below = face;
+        --below[a];
+        u[a][k] -= dt / (rho * theta * grid.dx) * (p[grid.cell(face)] - p[grid.cell(below)]);
+      });
   }
   return stats;
 }

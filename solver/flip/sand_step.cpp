@@ -1,7 +1,6 @@
 #include "flip/sand_step.hpp"
 
 #include <algorithm>
-#include <map>
 
 #include "sand/frictional_stress.hpp"
 #include "sand/yield.hpp"
@@ -175,20 +174,29 @@ std::vector<std::vector<std::size_t>> rigid_groups(const MacGrid<D>& grid, const
 template <int D>
 std::vector<GroupFace> group_faces(const MacGrid<D>& grid, const CellState<D>& cells,
                                    const std::vector<std::size_t>& group) {
-  std::map<std::pair<int, std::size_t>, double> mass;
+  struct Share {
+    int axis;
+    std::size_t index;
+    double mass;
+  };
+  std::vector<Share> shares;  // one per (cell, face): merged per face below, in face order
+  shares.reserve(2 * D * group.size());
   const double volume = std::pow(grid.dx, D);
   for (const auto k : group) {
     const Index<D> c = MacGrid<D>::unflat(k, grid.n);
     for (int a = 0; a < D; ++a)
-      for (const int s : {0, 1}) {
-        mass[{a, grid.face(a, shifted<D>(c, a, s))}] += 0.5 * cells.density[k] * volume;
-      }
+      for (const int s : {0, 1}) shares.push_back({a, grid.face(a, shifted<D>(c, a, s)), 0.5 * cells.density[k] * volume});
   }
+  std::stable_sort(shares.begin(), shares.end(), [](const Share& l, const Share& r) {
+    return l.axis != r.axis ? l.axis < r.axis : l.index < r.index;
+  });
   std::vector<GroupFace> out;
-  out.reserve(mass.size());
-  for (const auto& [key, m] : mass)
-    out.push_back({key.first, key.second, m,
-                   grid.is_wall_face(key.first, MacGrid<D>::unflat(key.second, grid.face_dims(key.first)))});
+  for (const Share& s : shares) {
+    if (out.empty() || out.back().axis != s.axis || out.back().index != s.index)
+      out.push_back({s.axis, s.index, 0.0,
+                     grid.is_wall_face(s.axis, MacGrid<D>::unflat(s.index, grid.face_dims(s.axis)))});
+    out.back().mass += s.mass;
+  }
   return out;
 }
 

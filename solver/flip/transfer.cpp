@@ -87,21 +87,24 @@ template <int D>
 void particles_to_grid(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
                        std::span<const Vec<D>> v, std::span<const double> m, FaceField<D>& u, FaceField<D>& weight) {
   const BinnedParticles<D> binned(bins, x, v, m);
-  for (int a = 0; a < D; ++a) {
-    const Index<D> dims = grid.face_dims(a);
-    u[a].resize(grid.face_count(a));
-    weight[a].resize(grid.face_count(a));
-    const long lines = static_cast<long>(grid.face_count(a) / static_cast<std::size_t>(dims[0]));
-#pragma omp parallel for schedule(dynamic, 16)
-    for (long line = 0; line < lines; ++line) {  // the faces of one row along axis 0
-      const std::size_t k0 = static_cast<std::size_t>(line) * static_cast<std::size_t>(dims[0]);
-      Index<D> f = MacGrid<D>::unflat(k0, dims);
-      for (f[0] = 0; f[0] < dims[0]; ++f[0]) {
-        const auto [wm, wmv] = gather_face<D>(grid, bins, binned, a, f);
-        weight[a][k0 + f[0]] = wm;
-        u[a][k0 + f[0]] = wm > 0.0 ? wmv / wm : 0.0;
-      }
+  const IndexBox<D> occupied =
+      IndexBox<D>::around(grid.n, [&](std::size_t c) { return bins.start[c + 1] > bins.start[c]; });
+  for (int a = 0; a < D; ++a) {  // faces within one cell of a particle's cell: the others get nothing
+    u[a].assign(grid.face_count(a), 0.0);
+    weight[a].assign(grid.face_count(a), 0.0);
+    Index<D> lo{}, hi{};
+    for (int d = 0; d < D; ++d) {
+      lo[d] = std::max(0, occupied.lo[d] - (d == a ? 0 : 1));
+      hi[d] = std::min(grid.n[d] - (d == a ? 0 : 1), occupied.hi[d] + 1);
     }
+    const IndexBox<D> box(grid.face_dims(a), lo, hi);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int layer = box.lo[D - 1]; layer <= box.hi[D - 1]; ++layer)
+      box.slab(layer).sweep(0, [&](const Index<D>& f, std::size_t k) {
+        const auto [wm, wmv] = gather_face<D>(grid, bins, binned, a, f);
+        weight[a][k] = wm;
+        u[a][k] = wm > 0.0 ? wmv / wm : 0.0;
+      });
   }
 }
 
