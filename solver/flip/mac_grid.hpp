@@ -168,11 +168,25 @@ struct IndexBox {
       if (lo[a] > hi[a]) return true;
     return false;
   }
-  /// The layer of the box at index i of the last axis.
-  IndexBox slab(int i) const {
-    IndexBox s = *this;
-    s.lo[D - 1] = s.hi[D - 1] = i;
-    return s;
+  /// The faces normal to axis a of the cells of this box (a box of cells): one more along a.
+  IndexBox faces(int a) const {
+    IndexBox f = *this;
+    ++f.dims[a];
+    ++f.hi[a];
+    f.stride[0] = 1;
+    for (int d = 1; d < D; ++d) f.stride[d] = f.stride[d - 1] * f.dims[d - 1];
+    return f;
+  }
+  /// body(i, k) for every index of the box, the layers of the last axis shared among the threads:
+  /// for loops whose every output belongs to one index.
+  template <class Body>
+  void parallel_for_each(Body&& body) const {
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int layer = lo[D - 1]; layer <= hi[D - 1]; ++layer) {
+      IndexBox s = *this;
+      s.lo[D - 1] = s.hi[D - 1] = layer;
+      s.sweep(0, body);
+    }
   }
   /// Calls body(i, k) for every index i of the box (k its flat index), along axis a ascending when
   /// bit a of `order` is 0, else descending (the 2^D orders of a fast sweep).

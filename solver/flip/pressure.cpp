@@ -244,19 +244,14 @@ ProjectionStats project(const MacGrid<D>& grid, const CellState<D>& cells, doubl
 
   const IndexBox<D> fluid = IndexBox<D>::around(grid.n, [&](std::size_t c) { return is_fluid(cells.label[c]); });
   for (int a = 0; a < D; ++a) {  // the faces next to fluid
-    Index<D> hi = fluid.hi;
-    ++hi[a];
-    const IndexBox<D> box(grid.face_dims(a), fluid.lo, hi);
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int layer = box.lo[D - 1]; layer <= box.hi[D - 1]; ++layer)
-      box.slab(layer).sweep(0, [&](const Index<D>& face, std::size_t k) {
-        const double rho = face_density<D>(grid, cells, a, face);
-        if (rho == 0.0) return;
-        const double theta = surface_fraction<D>(grid, cells, a, face);
-        Index<D> below = face;
-        --below[a];
-        u[a][k] -= dt / (rho * theta * grid.dx) * (p[grid.cell(face)] - p[grid.cell(below)]);
-      });
+    fluid.faces(a).parallel_for_each([&](const Index<D>& face, std::size_t k) {
+      const double rho = face_density<D>(grid, cells, a, face);
+      if (rho == 0.0) return;
+      const double theta = surface_fraction<D>(grid, cells, a, face);
+      Index<D> below = face;
+      --below[a];
+      u[a][k] -= dt / (rho * theta * grid.dx) * (p[grid.cell(face)] - p[grid.cell(below)]);
+    });
   }
   return stats;
 }

@@ -59,19 +59,17 @@ void classify_sand(const MacGrid<D>& grid, const CellState<D>& cells, const Face
   out.stress.resize(n);
   const double sin_phi = sand.sin_phi(), strength = yield_strength_factor(sand.yield_surface);
   const IndexBox<D> box = IndexBox<D>::around(grid.n, [&](std::size_t k) { return cells.label[k] == Cell::Sand; });
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int layer = box.lo[D - 1]; layer <= box.hi[D - 1]; ++layer)
-    box.slab(layer).sweep(0, [&](const Index<D>& c, std::size_t k) {
-      if (cells.label[k] != Cell::Sand) return;
-      const Mat<D> strain = cell_strain_rate<D>(grid, cells, u, c);
-      const Mat<D> sigma_rigid = rigid_stress<D>(strain, cells.density[k], grid.dx, dt);
-      if (is_rigid<D>(sigma_rigid, p[k], sin_phi, sand.cohesion, strength)) {
-        out.rigid[k] = 1;
-      } else {
-        out.yielding[k] = 1;
-        out.stress[k] = -frictional_stress<D>(strain, p[k], sin_phi);
-      }
-    });
+  box.parallel_for_each([&](const Index<D>& c, std::size_t k) {
+    if (cells.label[k] != Cell::Sand) return;
+    const Mat<D> strain = cell_strain_rate<D>(grid, cells, u, c);
+    const Mat<D> sigma_rigid = rigid_stress<D>(strain, cells.density[k], grid.dx, dt);
+    if (is_rigid<D>(sigma_rigid, p[k], sin_phi, sand.cohesion, strength)) {
+      out.rigid[k] = 1;
+    } else {
+      out.yielding[k] = 1;
+      out.stress[k] = -frictional_stress<D>(strain, p[k], sin_phi);
+    }
+  });
 }
 
 template <int D>
@@ -87,27 +85,22 @@ void apply_frictional_stress(const MacGrid<D>& grid, const CellState<D>& cells, 
   };
   const IndexBox<D> flowing = IndexBox<D>::around(grid.n, [&](std::size_t k) { return sand_cells.yielding[k] != 0; });
   for (int a = 0; a < D; ++a) {
-    Index<D> hi = flowing.hi;
-    ++hi[a];
-    const IndexBox<D> box(grid.face_dims(a), flowing.lo, hi);
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int layer = box.lo[D - 1]; layer <= box.hi[D - 1]; ++layer)
-      box.slab(layer).sweep(0, [&](const Index<D>& c1, std::size_t k) {
-        if (grid.is_wall_face(a, c1)) return;
-        const Index<D> c0 = shifted<D>(c1, a, -1);
-        if (!sand_cells.yielding[grid.cell(c0)] && !sand_cells.yielding[grid.cell(c1)]) return;
-        double div = (tau(c1, a, a) - tau(c0, a, a)) / grid.dx;
-        for (int b = 0; b < D; ++b) {
-          if (b == a) continue;
-          const auto edge = [&](int s) {
-            const Index<D> d0 = shifted<D>(c0, b, s), d1 = shifted<D>(c1, b, s);
-            if (!sand_at(c0) || !sand_at(c1) || !sand_at(d0) || !sand_at(d1)) return 0.0;  // boundary: no traction
-            return 0.25 * (tau(c0, a, b) + tau(c1, a, b) + tau(d0, a, b) + tau(d1, a, b));
-          };
-          div += (edge(1) - edge(-1)) / grid.dx;
-        }
-        u[a][k] += dt / face_density<D>(grid, cells, a, c1) * div;
-      });
+    flowing.faces(a).parallel_for_each([&](const Index<D>& c1, std::size_t k) {
+      if (grid.is_wall_face(a, c1)) return;
+      const Index<D> c0 = shifted<D>(c1, a, -1);
+      if (!sand_cells.yielding[grid.cell(c0)] && !sand_cells.yielding[grid.cell(c1)]) return;
+      double div = (tau(c1, a, a) - tau(c0, a, a)) / grid.dx;
+      for (int b = 0; b < D; ++b) {
+        if (b == a) continue;
+        const auto edge = [&](int s) {
+          const Index<D> d0 = shifted<D>(c0, b, s), d1 = shifted<D>(c1, b, s);
+          if (!sand_at(c0) || !sand_at(c1) || !sand_at(d0) || !sand_at(d1)) return 0.0;  // boundary: no traction
+          return 0.25 * (tau(c0, a, b) + tau(c1, a, b) + tau(d0, a, b) + tau(d1, a, b));
+        };
+        div += (edge(1) - edge(-1)) / grid.dx;
+      }
+      u[a][k] += dt / face_density<D>(grid, cells, a, c1) * div;
+    });
   }
 }
 

@@ -98,13 +98,11 @@ void particles_to_grid(const MacGrid<D>& grid, const ParticleBins<D>& bins, std:
       hi[d] = std::min(grid.n[d] - (d == a ? 0 : 1), occupied.hi[d] + 1);
     }
     const IndexBox<D> box(grid.face_dims(a), lo, hi);
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int layer = box.lo[D - 1]; layer <= box.hi[D - 1]; ++layer)
-      box.slab(layer).sweep(0, [&](const Index<D>& f, std::size_t k) {
-        const auto [wm, wmv] = gather_face<D>(grid, bins, binned, a, f);
-        weight[a][k] = wm;
-        u[a][k] = wm > 0.0 ? wmv / wm : 0.0;
-      });
+    box.parallel_for_each([&](const Index<D>& f, std::size_t k) {
+      const auto [wm, wmv] = gather_face<D>(grid, bins, binned, a, f);
+      weight[a][k] = wm;
+      u[a][k] = wm > 0.0 ? wmv / wm : 0.0;
+    });
   }
 }
 
