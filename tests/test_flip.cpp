@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "flip/extrapolate.hpp"
 #include "flip/flip_solver.hpp"
 
 using namespace sc;
@@ -210,6 +211,40 @@ BOOST_AUTO_TEST_CASE(transfers_reproduce_uniform_and_linear_fields) {
     BOOST_TEST_MESSAGE((linear ? "linear" : "uniform") << " field: max error " << err);
     BOOST_TEST(err < 1e-12);
   }
+}
+
+// [Zhu-Bridson 2005: velocity extrapolation]: below a flat surface (fluid in the cells z < 3 of an
+// 8^3 grid) each component varies across the surface's plane and is constant along its normal;
+// extended by fast sweeping two cell widths up, every face within reach takes exactly the value
+// of the topmost known face of its column, the faces further up are 0, and the wall faces (marked
+// 100) neither change nor leak into the air.
+BOOST_AUTO_TEST_CASE(extrapolation_extends_a_field_constant_along_the_normal_exactly) {
+  const MacGrid<3> grid(Vec<3>::Zero(), Vec<3>::Constant(0.8), 0.1);
+  std::vector<Cell> label(grid.cell_count(), Cell::Air);
+  for (std::size_t k = 0; k < label.size(); ++k)
+    if (MacGrid<3>::unflat(k, grid.n)[2] < 3) label[k] = Cell::Sand;
+  const int layers = 2;
+  FaceField<3> u = grid.zero_faces();
+  const auto top_known = [](int a) { return a == 2 ? 3 : 2; };  // the highest face layer next to fluid
+  const auto plane_value = [](int a, const Index<3>& f) { return 1.0 + a + f[0] + 10.0 * f[1]; };
+  for (int a = 0; a < 3; ++a)
+    for (std::size_t k = 0; k < u[a].size(); ++k) {
+      const Index<3> f = MacGrid<3>::unflat(k, grid.face_dims(a));
+      u[a][k] = grid.is_wall_face(a, f) ? 100.0 : f[2] <= top_known(a) ? plane_value(a, f) : -7.0;
+    }
+  FaceField<3>* const fields[] = {&u};
+  extrapolate<3>(grid, label, layers, fields);
+  int wrong = 0;
+  for (int a = 0; a < 3; ++a)
+    for (std::size_t k = 0; k < u[a].size(); ++k) {
+      const Index<3> f = MacGrid<3>::unflat(k, grid.face_dims(a));
+      const int height = f[2] - top_known(a);
+      const double expected = grid.is_wall_face(a, f) ? 100.0
+                              : height <= layers     ? plane_value(a, f)
+                                                     : 0.0;
+      if (u[a][k] != expected) ++wrong;
+    }
+  BOOST_TEST(wrong == 0);
 }
 
 // Hydrostatic rest [Zhu-Bridson 2005: Solving on the Grid], 2-D and 3-D: a water tank at rest stays

@@ -65,7 +65,8 @@ void FlipSolver<D>::transfer_to_grid() {
 template <int D>
 void FlipSolver<D>::sand_step(double dt, const FaceField<D>& before_projection) {
   auto stress_scope = timers_.time(FlipStage::SandStress);
-  const SandCells<D> sand = classify_sand<D>(grid_, cells_, u_, p_, params_.sand, dt);
+  classify_sand<D>(grid_, cells_, u_, p_, params_.sand, dt, sand_);
+  const SandCells<D>& sand = sand_;
   apply_frictional_stress<D>(grid_, cells_, sand, dt, u_);
   SideFriction<D> mu{};
   for (std::size_t side = 0; side < mu.size(); ++side) mu[side] = params_.rough_side[side] ? params_.sand.wall_mu() : 0.0;
@@ -120,9 +121,8 @@ double FlipSolver<D>::step() {
   sand_step(dt, before_projection);
   {
     auto scope = timers_.time(FlipStage::Advection);
-    const FaceField<D> known = known_faces<D>(grid_, cells_.label);
-    extrapolate<D>(grid_, known, params_.extrapolation_layers, u_);
-    extrapolate<D>(grid_, known, params_.extrapolation_layers, u_old_);
+    FaceField<D>* const fields[] = {&u_, &u_old_};
+    extrapolate<D>(grid_, cells_.label, params_.extrapolation_layers, fields);
     update_particles(dt);
   }
   time_ += dt;

@@ -45,7 +45,7 @@ struct FlipParams {
   double dt_max = 1e-3;                                 ///< [s]
   double cg_tolerance = 1e-12;                          ///< relative residual of the pressure solve
   long cg_max_iterations = 2000;
-  int extrapolation_layers = 3;                         ///< rings of faces the velocity is extended into air
+  int extrapolation_layers = 3;                         ///< cell widths the velocity is extended into air
 };
 
 /// The particles of the method, laid out as ParticleView<D> (solver/method/method.hpp) expects.
@@ -110,6 +110,7 @@ class FlipSolver {
   ParticleBins<D> bins_;
   FaceField<D> u_, u_old_, weight_;
   CellState<D> cells_;
+  SandCells<D> sand_;
   std::vector<double> p_;
   ProjectionStats stats_;
   double time_ = 0.0;

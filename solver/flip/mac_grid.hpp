@@ -136,6 +136,88 @@ struct MacGrid {
   }
 };
 
+/// An axis-aligned box of the indices lo .. hi (inclusive) of a grid of `dims`, with the flat-index
+/// stride of each axis: loops over the part of the grid where the material is.
+template <int D>
+struct IndexBox {
+  Index<D> dims, lo, hi;
+  std::array<long, D> stride{};
+
+  IndexBox(const Index<D>& d, const Index<D>& l, const Index<D>& h) : dims(d), lo(l), hi(h) {
+    stride[0] = 1;
+    for (int a = 1; a < D; ++a) stride[a] = stride[a - 1] * dims[a - 1];
+  }
+  /// The smallest box holding every index k (flat) of `dims` with selected(k); empty if none.
+  template <class Pred>
+  static IndexBox around(const Index<D>& dims, Pred&& selected) {
+    Index<D> l = dims, h{};
+    h.fill(-1);
+    Index<D> i{};
+    for (std::size_t k = 0; k < MacGrid<D>::count(dims); ++k) {
+      if (selected(k))
+        for (int a = 0; a < D; ++a) {
+          l[a] = std::min(l[a], i[a]);
+          h[a] = std::max(h[a], i[a]);
+        }
+      for (int a = 0; a < D && ++i[a] == dims[a]; ++a) i[a] = 0;
+    }
+    return {dims, l, h};
+  }
+  bool empty() const {
+    for (int a = 0; a < D; ++a)
+      if (lo[a] > hi[a]) return true;
+    return false;
+  }
+  /// The faces normal to axis a of the cells of this box (a box of cells): one more along a.
+  IndexBox faces(int a) const {
+    IndexBox f = *this;
+    ++f.dims[a];
+    ++f.hi[a];
+    f.stride[0] = 1;
+    for (int d = 1; d < D; ++d) f.stride[d] = f.stride[d - 1] * f.dims[d - 1];
+    return f;
+  }
+  /// body(i, k) for every index of the box, the layers of the last axis shared among the threads:
+  /// for loops whose every output belongs to one index.
+  template <class Body>
+  void parallel_for_each(Body&& body) const {
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int layer = lo[D - 1]; layer <= hi[D - 1]; ++layer) {
+      IndexBox s = *this;
+      s.lo[D - 1] = s.hi[D - 1] = layer;
+      s.sweep(0, body);
+    }
+  }
+  /// Calls body(i, k) for every index i of the box (k its flat index), along axis a ascending when
+  /// bit a of `order` is 0, else descending (the 2^D orders of a fast sweep).
+  template <class Body>
+  void sweep(unsigned order, Body&& body) const {
+    if (empty()) return;
+    Index<D> f{};
+    long k = 0;
+    for (int a = 0; a < D; ++a) {
+      f[a] = (order >> a) & 1 ? hi[a] : lo[a];
+      k += f[a] * stride[a];
+    }
+    while (true) {
+      body(f, static_cast<std::size_t>(k));
+      int a = 0;
+      for (; a < D; ++a) {
+        const bool down = (order >> a) & 1;
+        if (down ? f[a] > lo[a] : f[a] < hi[a]) {
+          f[a] += down ? -1 : 1;
+          k += down ? -stride[a] : stride[a];
+          break;
+        }
+        const int start = down ? hi[a] : lo[a];
+        k -= (f[a] - start) * stride[a];
+        f[a] = start;
+      }
+      if (a == D) return;
+    }
+  }
+};
+
 template <int D>
 MacGrid<D>::MacGrid(const Vec<D>& box_lo, const Vec<D>& box_hi, double cell_width) : lo(box_lo) {
   for (int d = 0; d < D; ++d) n[d] = std::max(2, static_cast<int>(std::lround((box_hi[d] - box_lo[d]) / cell_width)));

@@ -50,7 +50,7 @@ struct ProjectionStats {
 ///   Σ_f k_f (p_c − p_nb(f)) = −(∇·u*)_c,   k_f = Δt/(ρ_f Δx²),
 /// over its non-wall faces f (walls: ∂p/∂n from u·n = 0, Neumann; air neighbours: p = 0 on the
 /// surface, a distance θ Δx from c, so k_f = Δt/(ρ_f θ Δx²), surface_fraction), with
-/// Eigen's conjugate gradient and an incomplete-Cholesky preconditioner to the relative residual
+/// a conjugate gradient preconditioned by modified incomplete Cholesky (MIC(0)) to the relative residual
 /// `tolerance`, then sets u_f ← u_f − Δt/(ρ_f θ Δx) (p_high − p_low) on every face next to fluid,
 /// and u·n = 0 on the walls. `p` receives the pressure per cell [Pa] (0 in air).
 template <int D>

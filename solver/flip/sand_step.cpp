@@ -1,7 +1,6 @@
 #include "flip/sand_step.hpp"
 
 #include <algorithm>
-#include <map>
 
 #include "sand/frictional_stress.hpp"
 #include "sand/yield.hpp"
@@ -52,18 +51,17 @@ Mat<D> cell_strain_rate(const MacGrid<D>& grid, const CellState<D>& cells, const
 }
 
 template <int D>
-SandCells<D> classify_sand(const MacGrid<D>& grid, const CellState<D>& cells, const FaceField<D>& u,
-                           const std::vector<double>& p, const SandParams& sand, double dt) {
+void classify_sand(const MacGrid<D>& grid, const CellState<D>& cells, const FaceField<D>& u,
+                   const std::vector<double>& p, const SandParams& sand, double dt, SandCells<D>& out) {
   const std::size_t n = grid.cell_count();
-  SandCells<D> out;
   out.yielding.assign(n, 0);
   out.rigid.assign(n, 0);
-  out.stress.assign(n, Mat<D>::Zero());
+  out.stress.resize(n);
   const double sin_phi = sand.sin_phi(), strength = yield_strength_factor(sand.yield_surface);
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < static_cast<long>(n); ++k) {
-    if (cells.label[k] != Cell::Sand) continue;
-    const Mat<D> strain = cell_strain_rate<D>(grid, cells, u, MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n));
+  const IndexBox<D> box = IndexBox<D>::around(grid.n, [&](std::size_t k) { return cells.label[k] == Cell::Sand; });
+  box.parallel_for_each([&](const Index<D>& c, std::size_t k) {
+    if (cells.label[k] != Cell::Sand) return;
+    const Mat<D> strain = cell_strain_rate<D>(grid, cells, u, c);
     const Mat<D> sigma_rigid = rigid_stress<D>(strain, cells.density[k], grid.dx, dt);
     if (is_rigid<D>(sigma_rigid, p[k], sin_phi, sand.cohesion, strength)) {
       out.rigid[k] = 1;
@@ -71,8 +69,7 @@ SandCells<D> classify_sand(const MacGrid<D>& grid, const CellState<D>& cells, co
       out.yielding[k] = 1;
       out.stress[k] = -frictional_stress<D>(strain, p[k], sin_phi);
     }
-  }
-  return out;
+  });
 }
 
 template <int D>
@@ -86,14 +83,12 @@ void apply_frictional_stress(const MacGrid<D>& grid, const CellState<D>& cells, 
   const auto sand_at = [&](const Index<D>& c) {
     return MacGrid<D>::inside(c, grid.n) && cells.label[grid.cell(c)] == Cell::Sand;
   };
+  const IndexBox<D> flowing = IndexBox<D>::around(grid.n, [&](std::size_t k) { return sand_cells.yielding[k] != 0; });
   for (int a = 0; a < D; ++a) {
-    const Index<D> dims = grid.face_dims(a);
-#pragma omp parallel for schedule(static)
-    for (long k = 0; k < static_cast<long>(u[a].size()); ++k) {
-      const Index<D> c1 = MacGrid<D>::unflat(static_cast<std::size_t>(k), dims);
-      if (grid.is_wall_face(a, c1)) continue;
+    flowing.faces(a).parallel_for_each([&](const Index<D>& c1, std::size_t k) {
+      if (grid.is_wall_face(a, c1)) return;
       const Index<D> c0 = shifted<D>(c1, a, -1);
-      if (!sand_cells.yielding[grid.cell(c0)] && !sand_cells.yielding[grid.cell(c1)]) continue;
+      if (!sand_cells.yielding[grid.cell(c0)] && !sand_cells.yielding[grid.cell(c1)]) return;
       double div = (tau(c1, a, a) - tau(c0, a, a)) / grid.dx;
       for (int b = 0; b < D; ++b) {
         if (b == a) continue;
@@ -105,7 +100,7 @@ void apply_frictional_stress(const MacGrid<D>& grid, const CellState<D>& cells, 
         div += (edge(1) - edge(-1)) / grid.dx;
       }
       u[a][k] += dt / face_density<D>(grid, cells, a, c1) * div;
-    }
+    });
   }
 }
 
@@ -126,20 +121,20 @@ void wall_friction(const MacGrid<D>& grid, const CellState<D>& cells, const Sand
       for (int b = 0; b < D; ++b) {
         const double mu = mu_side[2 * a + side];
         if (b == a || mu <= 0.0) continue;
-        const int layer = side ? grid.n[a] - 1 : 0;
         const Index<D> dims = grid.face_dims(b);
-#pragma omp parallel for schedule(static)
-        for (long k = 0; k < static_cast<long>(u[b].size()); ++k) {
-          const Index<D> c1 = MacGrid<D>::unflat(static_cast<std::size_t>(k), dims);
-          if (c1[a] != layer || grid.is_wall_face(b, c1)) continue;
+        Index<D> lo{}, hi = dims;
+        for (int d = 0; d < D; ++d) --hi[d];
+        lo[a] = hi[a] = side ? grid.n[a] - 1 : 0;  // the cell layer next to the wall
+        IndexBox<D>(dims, lo, hi).sweep(0, [&](const Index<D>& c1, std::size_t k) {
+          if (grid.is_wall_face(b, c1)) return;
           const Index<D> c0 = shifted<D>(c1, b, -1);
-          if (!sand_cells.yielding[grid.cell(c0)] && !sand_cells.yielding[grid.cell(c1)]) continue;
+          if (!sand_cells.yielding[grid.cell(c0)] && !sand_cells.yielding[grid.cell(c1)]) return;
           const double stress = 0.5 * (wall_normal_stress<D>(grid, cells, p, before, dt, a, side, c0) +
                                        wall_normal_stress<D>(grid, cells, p, before, dt, a, side, c1));
           const double bound = mu * stress * dt / (face_density<D>(grid, cells, b, c1) * grid.dx);
           const double speed = std::abs(u[b][k]);
           u[b][k] = speed > bound ? u[b][k] * (1.0 - bound / speed) : 0.0;
-        }
+        });
       }
 }
 
@@ -172,20 +167,29 @@ std::vector<std::vector<std::size_t>> rigid_groups(const MacGrid<D>& grid, const
 template <int D>
 std::vector<GroupFace> group_faces(const MacGrid<D>& grid, const CellState<D>& cells,
                                    const std::vector<std::size_t>& group) {
-  std::map<std::pair<int, std::size_t>, double> mass;
+  struct Share {
+    int axis;
+    std::size_t index;
+    double mass;
+  };
+  std::vector<Share> shares;  // one per (cell, face): merged per face below, in face order
+  shares.reserve(2 * D * group.size());
   const double volume = std::pow(grid.dx, D);
   for (const auto k : group) {
     const Index<D> c = MacGrid<D>::unflat(k, grid.n);
     for (int a = 0; a < D; ++a)
-      for (const int s : {0, 1}) {
-        mass[{a, grid.face(a, shifted<D>(c, a, s))}] += 0.5 * cells.density[k] * volume;
-      }
+      for (const int s : {0, 1}) shares.push_back({a, grid.face(a, shifted<D>(c, a, s)), 0.5 * cells.density[k] * volume});
   }
+  std::stable_sort(shares.begin(), shares.end(), [](const Share& l, const Share& r) {
+    return l.axis != r.axis ? l.axis < r.axis : l.index < r.index;
+  });
   std::vector<GroupFace> out;
-  out.reserve(mass.size());
-  for (const auto& [key, m] : mass)
-    out.push_back({key.first, key.second, m,
-                   grid.is_wall_face(key.first, MacGrid<D>::unflat(key.second, grid.face_dims(key.first)))});
+  for (const Share& s : shares) {
+    if (out.empty() || out.back().axis != s.axis || out.back().index != s.index)
+      out.push_back({s.axis, s.index, 0.0,
+                     grid.is_wall_face(s.axis, MacGrid<D>::unflat(s.index, grid.face_dims(s.axis)))});
+    out.back().mass += s.mass;
+  }
   return out;
 }
 
@@ -254,8 +258,8 @@ void apply_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace>& fa
 
 #define SC_FLIP_SAND(D)                                                                                            \
   template Mat<D> cell_strain_rate<D>(const MacGrid<D>&, const CellState<D>&, const FaceField<D>&, const Index<D>&); \
-  template SandCells<D> classify_sand<D>(const MacGrid<D>&, const CellState<D>&, const FaceField<D>&,              \
-                                         const std::vector<double>&, const SandParams&, double);                   \
+  template void classify_sand<D>(const MacGrid<D>&, const CellState<D>&, const FaceField<D>&,                     \
+                                 const std::vector<double>&, const SandParams&, double, SandCells<D>&);            \
   template void apply_frictional_stress<D>(const MacGrid<D>&, const CellState<D>&, const SandCells<D>&, double,     \
                                            FaceField<D>&);                                                          \
   template double wall_normal_stress<D>(const MacGrid<D>&, const CellState<D>&, const std::vector<double>&,        \

@@ -27,7 +27,7 @@ template <int D>
 Mat<D> cell_strain_rate(const MacGrid<D>& grid, const CellState<D>& cells, const FaceField<D>& u, const Index<D>& c);
 
 /// Per cell: sand that yields (flows) and sand that is rigid, and the stress (tension positive,
-/// −σ of the compression-positive convention) that flowing cells exert.
+/// −σ of the compression-positive convention) that flowing cells exert (only read where yielding).
 template <int D>
 struct SandCells {
   std::vector<std::uint8_t> yielding, rigid;
@@ -40,9 +40,10 @@ struct SandCells {
 /// (sand/yield.hpp is_rigid, strength factor of the case's yield surface, cohesion c); a flowing cell
 /// stores the frictional stress σ_f = −sin φ p D/(√(1/3)|D|_F) [Zhu-Bridson 2005: frictional stress]
 /// (sand/frictional_stress.hpp).
+/// `out` is reused from step to step: its stress array is only resized.
 template <int D>
-SandCells<D> classify_sand(const MacGrid<D>& grid, const CellState<D>& cells, const FaceField<D>& u,
-                           const std::vector<double>& p, const SandParams& sand, double dt);
+void classify_sand(const MacGrid<D>& grid, const CellState<D>& cells, const FaceField<D>& u,
+                   const std::vector<double>& p, const SandParams& sand, double dt, SandCells<D>& out);
 
 /// Velocity update by the frictional stress of flowing cells [Zhu-Bridson 2005: frictional stress]:
 /// u_f ← u_f + Δt/ρ_f (∇·τ)_a on every non-wall face next to a flowing cell, with τ = −σ_f at cell

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sand/rigid_body.hpp"
+
 namespace sc::flip {
 
 template <int D>
@@ -31,28 +33,49 @@ double hat_weight(const Vec<D>& x, const Vec<D>& xf, double dx) {
   return w;
 }
 
+/// The particles' positions, masses and velocities in bin order, so that the particles of a row of
+/// cells lie next to each other in memory.
+template <int D>
+struct BinnedParticles {
+  VecArrayOf<D> x, v;
+  std::vector<double> m;
+
+  BinnedParticles(const ParticleBins<D>& bins, std::span<const Vec<D>> xs, std::span<const Vec<D>> vs,
+                  std::span<const double> ms)
+      : x(bins.order.size()), v(bins.order.size()), m(bins.order.size()) {
+    for (std::size_t j = 0; j < bins.order.size(); ++j) {
+      x[j] = xs[bins.order[j]];
+      v[j] = vs[bins.order[j]];
+      m[j] = ms[bins.order[j]];
+    }
+  }
+};
+
 /// Σ w m and Σ w m v_a over the particles within one cell width of face f (axis a): the cells
 /// f − e_a and f along a, f − 1 .. f + 1 along the other axes, in fixed cell and particle order.
+/// The cells of one row along axis 0 are consecutive bins: one range of binned particles per row.
 template <int D>
-std::pair<double, double> gather_face(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
-                                      std::span<const Vec<D>> v, std::span<const double> m, int a,
-                                      const Index<D>& f) {
+std::pair<double, double> gather_face(const MacGrid<D>& grid, const ParticleBins<D>& bins,
+                                      const BinnedParticles<D>& ps, int a, const Index<D>& f) {
   const Vec<D> xf = grid.face_centre(a, f);
-  Index<D> lo{}, extent{};
-  for (int d = 0; d < D; ++d) {
+  const int first = std::max(0, f[0] - 1), last = std::min(grid.n[0] - 1, f[0] + (a == 0 ? 0 : 1));
+  Index<D> lo{}, rows{};
+  rows[0] = 1;
+  for (int d = 1; d < D; ++d) {
     lo[d] = f[d] - 1;
-    extent[d] = d == a ? 2 : 3;
+    rows[d] = d == a ? 2 : 3;
   }
   double wm = 0.0, wmv = 0.0;
-  const std::size_t neighbours = MacGrid<D>::count(extent);
-  for (std::size_t k = 0; k < neighbours; ++k) {
-    Index<D> c = MacGrid<D>::unflat(k, extent);
-    for (int d = 0; d < D; ++d) c[d] += lo[d];
+  for (std::size_t r = 0; r < MacGrid<D>::count(rows); ++r) {
+    Index<D> c = MacGrid<D>::unflat(r, rows);
+    for (int d = 1; d < D; ++d) c[d] += lo[d];
+    c[0] = first;
     if (!MacGrid<D>::inside(c, grid.n)) continue;
-    for (const auto p : bins.in(grid.cell(c))) {
-      const double w = hat_weight<D>(x[p], xf, grid.dx) * m[p];
+    const std::size_t k = grid.cell(c);
+    for (std::size_t j = bins.start[k]; j < bins.start[k + static_cast<std::size_t>(last - first) + 1]; ++j) {
+      const double w = hat_weight<D>(ps.x[j], xf, grid.dx) * ps.m[j];
       wm += w;
-      wmv += w * v[p][a];
+      wmv += w * ps.v[j][a];
     }
   }
   return {wm, wmv};
@@ -63,17 +86,23 @@ std::pair<double, double> gather_face(const MacGrid<D>& grid, const ParticleBins
 template <int D>
 void particles_to_grid(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
                        std::span<const Vec<D>> v, std::span<const double> m, FaceField<D>& u, FaceField<D>& weight) {
-  u = grid.zero_faces();
-  weight = grid.zero_faces();
-  for (int a = 0; a < D; ++a) {
-    const Index<D> dims = grid.face_dims(a);
-    const long faces = static_cast<long>(grid.face_count(a));
-#pragma omp parallel for schedule(static)
-    for (long k = 0; k < faces; ++k) {
-      const auto [wm, wmv] = gather_face<D>(grid, bins, x, v, m, a, MacGrid<D>::unflat(static_cast<std::size_t>(k), dims));
+  const BinnedParticles<D> binned(bins, x, v, m);
+  const IndexBox<D> occupied =
+      IndexBox<D>::around(grid.n, [&](std::size_t c) { return bins.start[c + 1] > bins.start[c]; });
+  for (int a = 0; a < D; ++a) {  // faces within one cell of a particle's cell: the others get nothing
+    u[a].assign(grid.face_count(a), 0.0);
+    weight[a].assign(grid.face_count(a), 0.0);
+    Index<D> lo{}, hi{};
+    for (int d = 0; d < D; ++d) {
+      lo[d] = std::max(0, occupied.lo[d] - (d == a ? 0 : 1));
+      hi[d] = std::min(grid.n[d] - (d == a ? 0 : 1), occupied.hi[d] + 1);
+    }
+    const IndexBox<D> box(grid.face_dims(a), lo, hi);
+    box.parallel_for_each([&](const Index<D>& f, std::size_t k) {
+      const auto [wm, wmv] = gather_face<D>(grid, bins, binned, a, f);
       weight[a][k] = wm;
       u[a][k] = wm > 0.0 ? wmv / wm : 0.0;
-    }
+    });
   }
 }
 
@@ -143,7 +172,7 @@ std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& 
   for (const double r : radius) mean_radius += r;
   const double reach = 4.0 * mean_radius / static_cast<double>(radius.size());  // twice the mean spacing
   const long n = static_cast<long>(phi.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 4096)
   for (long k = 0; k < n; ++k) {
     if (is_fluid(label[k])) continue;
     const Index<D> c = MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n);
