@@ -179,7 +179,7 @@ int bench(const BenchOptions& opt) {
   for (const std::string& name : scenes) {
     const std::string file = cases_dir + "/" + name + "/case.json";
     if (!fs::exists(file)) throw InputError(file, "", "no scene named '" + name + "' (see " + cases_dir + ")");
-    const CaseSpec spec = load_case(file);
+    const CaseSpec spec = opt.method.empty() ? load_case(file) : with_method(load_case(file), opt.method);
     const double dx = spec.tiers.at("full").spacings.back();
     check_particle_count(spec, dx, opt.max_particles, "/tiers/full/spacings");
     const long steps = opt.steps > 0 ? opt.steps : (name.rfind("bench_water", 0) == 0 ? 200 : 100);

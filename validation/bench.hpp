@@ -13,6 +13,7 @@ struct BenchOptions {
   int threads = 0;                  ///< OpenMP threads; 0 = OpenMP's default (OMP_NUM_THREADS)
   std::string out_dir;
   std::string cases_dir;            ///< default: the repository's cases/
+  std::string method;               ///< run every scene by this method (one it supports); empty = the scene's own
   double max_particles = kDefaultMaxParticles;      ///< estimated particles above which a scene is refused (--max-particles)
 };
 

@@ -145,6 +145,7 @@ int main(int argc, char** argv) {
   bench->add_option("--threads", benchopt.threads, "OpenMP threads (default: OMP_NUM_THREADS)")->check(CLI::PositiveNumber);
   bench->add_option("--out", benchopt.out_dir, "output folder")->required()->check(output_folder);
   bench->add_option("--cases-dir", benchopt.cases_dir, "folder of cases (default: the repository's cases/)");
+  bench->add_option("--method", benchopt.method, "simulation method, overriding each scene's \"method\" (one the scene supports)");
   bench->add_option("--max-particles", benchopt.max_particles, max_help)->check(CLI::PositiveNumber);
 
   try {

@@ -63,6 +63,8 @@ ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, con
                            Spring<D>& spring) {
   ContactForce<D> out{Vec<D>::Zero(), Spin<D>::Zero()};
   const Vec<D> d = g.x[j] - g.x[i];
+  const double reach = g.radius[i] + g.radius[j];  // the wet radii are never larger
+  if (p.bridge == BridgeLaw::None && d.squaredNorm() >= reach * reach) return out;
   const double dist = d.norm();
   if (dist <= 0.0) return out;
   const Vec<D> n = d / dist;
