@@ -59,6 +59,13 @@ void bin_grains(const Grains<D>& g, const Params& p, CellGrid<D>& grid) {
 }
 
 template <int D>
+void update_neighbours(const Grains<D>& g, const Params& p, NeighbourList<D>& list) {
+  const double range = interaction_range(g, p);
+  const std::span<const Vec<D>> x(g.x.data(), g.x.size());
+  if (list.stale(x, range)) list.build(x, range, 0.1 * range);
+}
+
+template <int D>
 ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, const Params& p, double dt,
                            Spring<D>& spring) {
   ContactForce<D> out{Vec<D>::Zero(), Spin<D>::Zero()};
@@ -98,7 +105,7 @@ ContactForce<D> wall_force(const Grains<D>& g, std::size_t i, const Plane<D>& wa
 }
 
 template <int D>
-void grain_forces(Grains<D>& g, const CellGrid<D>& grid, const Params& p, const Vec<D>& gravity,
+void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, const Vec<D>& gravity,
                   std::span<const Plane<D>> walls, double dt) {
   const auto n = static_cast<std::ptrdiff_t>(g.size());
 #pragma omp parallel
@@ -117,8 +124,8 @@ void grain_forces(Grains<D>& g, const CellGrid<D>& grid, const Params& p, const 
         t += c.torque;
         if (c.touching) kept.push_back(spring);
       };
-      grid.for_each_near(g.x[i], [&](std::uint32_t j) {
-        if (j != i) add(j, [&](Spring<D>& spring) { return pair_force(g, i, j, p, dt, spring); });
+      near.for_each_near(i, [&](std::uint32_t j) {
+        add(j, [&](Spring<D>& spring) { return pair_force(g, i, j, p, dt, spring); });
       });
       for (std::size_t w = 0; w < walls.size(); ++w)
         add(wall_key(w), [&](Spring<D>& spring) { return wall_force(g, i, walls[w], p, dt, spring); });
@@ -142,10 +149,10 @@ void integrate(Grains<D>& g, const Params& p, double dt) {
 }
 
 template <int D>
-void step(Grains<D>& g, CellGrid<D>& grid, const Params& p, const Vec<D>& gravity, std::span<const Plane<D>> walls,
-          double dt) {
-  bin_grains(g, p, grid);
-  grain_forces(g, grid, p, gravity, walls, dt);
+void step(Grains<D>& g, NeighbourList<D>& near, const Params& p, const Vec<D>& gravity,
+          std::span<const Plane<D>> walls, double dt) {
+  update_neighbours(g, p, near);
+  grain_forces(g, near, p, gravity, walls, dt);
   integrate(g, p, dt);
 }
 
@@ -156,10 +163,12 @@ void step(Grains<D>& g, CellGrid<D>& grid, const Params& p, const Vec<D>& gravit
                                          Spring<D>&);                                                        \
   template ContactForce<D> wall_force<D>(const Grains<D>&, std::size_t, const Plane<D>&, const Params&, double, \
                                          Spring<D>&);                                                        \
-  template void grain_forces<D>(Grains<D>&, const CellGrid<D>&, const Params&, const Vec<D>&,                \
+  template void update_neighbours<D>(const Grains<D>&, const Params&, NeighbourList<D>&);                    \
+  template void grain_forces<D>(Grains<D>&, const NeighbourList<D>&, const Params&, const Vec<D>&,           \
                                 std::span<const Plane<D>>, double);                                          \
   template void integrate<D>(Grains<D>&, const Params&, double);                                              \
-  template void step<D>(Grains<D>&, CellGrid<D>&, const Params&, const Vec<D>&, std::span<const Plane<D>>, double);
+  template void step<D>(Grains<D>&, NeighbourList<D>&, const Params&, const Vec<D>&, std::span<const Plane<D>>,   \
+                        double);
 SC_DEM_FORCES(2)
 SC_DEM_FORCES(3)
 #undef SC_DEM_FORCES

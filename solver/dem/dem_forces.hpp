@@ -1,6 +1,6 @@
 // Forces on DEM grains and their time integration (Rungjiratananon et al. 2008, seed 003): contacts
 // between grains and with the tank's walls, liquid bridges between wet grains, gravity. Each grain
-// gathers its own contacts over the cell grid (no scatter, no atomics), so 1 and 2 threads give
+// gathers its own contacts over its neighbour list (no scatter, no atomics), so 1 and 2 threads give
 // bitwise the same forces.
 #pragma once
 #include <span>
@@ -8,6 +8,7 @@
 #include "dem/cell_grid.hpp"
 #include "dem/contact_laws.hpp"
 #include "dem/grains.hpp"
+#include "dem/neighbour_list.hpp"
 
 namespace sc::dem {
 
@@ -16,9 +17,14 @@ namespace sc::dem {
 template <int D>
 double interaction_range(const Grains<D>& g, const Params& p);
 
-/// Bins the grains for the contact gather (cell size interaction_range).
+/// Bins the grains by interaction_range (the wetness gather, solver/dem/wetness.hpp).
 template <int D>
 void bin_grains(const Grains<D>& g, const Params& p, CellGrid<D>& grid);
+
+/// Builds the contact gather's neighbour list again when it is stale (a grain moved more than half
+/// its skin, a tenth of interaction_range, or the range grew).
+template <int D>
+void update_neighbours(const Grains<D>& g, const Params& p, NeighbourList<D>& list);
 
 /// Force and torque on grain i from grain j (contact and bridge) over a step Δt; zero when apart.
 /// `spring` holds i's springs of the contact (relaxed for a new one) and is advanced by Δt.
@@ -34,16 +40,16 @@ ContactForce<D> wall_force(const Grains<D>& g, std::size_t i, const Plane<D>& wa
 /// Sets force and torque of every grain over a step Δt: gravity, pair contacts and bridges, walls;
 /// each grain's contact springs advance and only those of contacts that still touch are kept.
 template <int D>
-void grain_forces(Grains<D>& g, const CellGrid<D>& grid, const Params& p, const Vec<D>& gravity,
+void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, const Vec<D>& gravity,
                   std::span<const Plane<D>> walls, double dt);
 
 /// Symplectic Euler: v += Δt F/m, ω += Δt T/I, then x += Δt v.
 template <int D>
 void integrate(Grains<D>& g, const Params& p, double dt);
 
-/// One dry or wet DEM step without water: bin, forces, integrate.
+/// One dry or wet DEM step without water: neighbours, forces, integrate.
 template <int D>
-void step(Grains<D>& g, CellGrid<D>& grid, const Params& p, const Vec<D>& gravity, std::span<const Plane<D>> walls,
-          double dt);
+void step(Grains<D>& g, NeighbourList<D>& near, const Params& p, const Vec<D>& gravity,
+          std::span<const Plane<D>> walls, double dt);
 
 }  // namespace sc::dem

@@ -123,7 +123,7 @@ dem::Grains<D> packed_block(const CaseSpec& spec, const DemCaseParams& own, doub
     }
   const Vec<D> gravity = to_vec<D>(spec.gravity);
   const double h = dem::stable_step(g, p), weight_scale = g.size() * g.mass(0) * gravity.norm() * (top - lo)[D - 1];
-  dem::CellGrid<D> cells;
+  dem::NeighbourList<D> cells;
   for (int chunk = 0; chunk < 200; ++chunk) {  // at most 200 x 200 contact steps
     for (int s = 0; s < 200; ++s) dem::step(g, cells, p, gravity, std::span<const dem::Plane<D>>(mould), h);
     if (kinetic_energy(g) < 1e-10 * weight_scale) break;
@@ -161,6 +161,7 @@ DemCaseParams read_dem_params(const CaseSpec& spec) {
   if (p.restitution <= 0.0) o.fail("restitution", "must be in (0, 1]");
   p.overlap = o.in_range("overlap", 0.0, 0.1, true, p.overlap);
   p.polydispersity = o.in_range("polydispersity", 0.0, 0.5, false, p.polydispersity);
+  p.packed = o.boolean("packed", p.packed);
   o.finish();
   if (!spec.tank) throw InputError(spec.file, "/tank", "method \"dem\" needs a tank (its closed sides are the contact walls)");
   if (!spec.meshes.empty()) throw InputError(spec.file, "/meshes", "method \"dem\" fills blocks only, not meshes");
@@ -195,7 +196,7 @@ double DemMethod<D>::step() {
   for (int s = 0; s < substeps_; ++s) {
     {
       auto scope = timers_.time(dem::DemStage::Contacts);
-      dem::bin_grains(grains_, params_, cells_);
+      dem::update_neighbours(grains_, params_, cells_);
       dem::grain_forces(grains_, cells_, params_, gravity_, std::span<const dem::Plane<D>>(walls_), h);
     }
     auto scope = timers_.time(dem::DemStage::Integration);
@@ -269,7 +270,12 @@ template <int D>
 std::unique_ptr<Method<D>> make_dem_method(const CaseSpec& spec, double dx) {
   const DemCaseParams own = read_dem_params(spec);
   dem::Grains<D> g;
-  for (std::size_t b = 0; b < spec.blocks.size(); ++b) append<D>(packed_block<D>(spec, own, dx, b), g);
+  for (std::size_t b = 0; b < spec.blocks.size(); ++b) {
+    const BlockSpec& block = spec.blocks[b];
+    if (own.packed) append<D>(packed_block<D>(spec, own, dx, b), g);
+    else seed_grains<D>(to_vec<D>(block.min), to_vec<D>(block.max), dx, spec.sand.rest_density, own.polydispersity,
+                        static_cast<unsigned>(b + 1), g);
+  }
   const dem::Params p = contact_params<D>(spec, own, dx, g);
   const int substeps = static_cast<int>(std::ceil(spec.dt_max / dem::stable_step(g, p) - 1e-9));
   return std::make_unique<DemMethod<D>>(std::move(g), p, tank_planes<D>(*spec.tank), to_vec<D>(spec.gravity),

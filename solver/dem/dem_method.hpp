@@ -24,6 +24,8 @@ namespace sc {
 ///   overlap            largest overlap under the weight of the material's full height, as a fraction
 ///                      of the grain radius (sets the spring stiffness)
 ///   polydispersity     p: grain radii uniform in [(1 − p), 1] × spacing/2, in [0, 0.5]
+///   packed             true: each block starts packed in its mould (make_dem_method); false: its
+///                      grains start loose on their lattice sites (a settling scene)
 struct DemCaseParams {
   double friction = 0.5;
   double rolling_friction = 0.0;
@@ -31,6 +33,7 @@ struct DemCaseParams {
   double restitution = 0.3;
   double overlap = 0.01;
   double polydispersity = 0.15;
+  bool packed = true;
 };
 
 /// Reads and checks the case's "methods"/"dem" object and that the case is one DEM can run behind
@@ -83,7 +86,7 @@ class DemMethod final : public Method<D> {
   int substeps_;
   double time_ = 0.0;
   long steps_ = 0;
-  dem::CellGrid<D> cells_;
+  dem::NeighbourList<D> cells_;
   StageClock<dem::DemStage> timers_;
   mutable std::vector<double> mass_, density_, support_;  // fields of the last particles() call
   mutable std::vector<std::uint8_t> phase_;
