@@ -103,6 +103,7 @@ fix gravi all gravity {gravity} vector 0.0 0.0 -1.0
 thermo_style custom step atoms ke
 thermo {max(1, steps // 10)}
 run {steps}
+write_dump all custom final.dump id x y z radius
 """)
     print(f"{n} grains, contact step {dt:.6g} s, {steps} steps: {out}/in.settle")
 
