@@ -27,6 +27,14 @@ Vec<D> bridge_force(const Grains<D>& g, std::size_t i, std::size_t j, const Para
   return Vec<D>::Zero();
 }
 
+/// Whether grains i and j can exert a force on each other: always with bridges, otherwise only when
+/// their dry radii overlap (the wet radii are never larger).
+template <int D>
+bool may_interact(const Grains<D>& g, std::size_t i, std::size_t j, const Params& p) {
+  const double reach = g.radius[i] + g.radius[j];
+  return p.bridge != BridgeLaw::None || (g.x[j] - g.x[i]).squaredNorm() < reach * reach;
+}
+
 /// The spring grain i kept of its contact with `key` last step, or a relaxed one for a new contact.
 template <int D>
 Spring<D> previous_spring(const std::vector<Spring<D>>& springs, std::uint32_t key) {
@@ -70,8 +78,6 @@ ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, con
                            Spring<D>& spring) {
   ContactForce<D> out{Vec<D>::Zero(), Spin<D>::Zero()};
   const Vec<D> d = g.x[j] - g.x[i];
-  const double reach = g.radius[i] + g.radius[j];  // the wet radii are never larger
-  if (p.bridge == BridgeLaw::None && d.squaredNorm() >= reach * reach) return out;
   const double dist = d.norm();
   if (dist <= 0.0) return out;
   const Vec<D> n = d / dist;
@@ -125,7 +131,7 @@ void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, c
         if (c.touching) kept.push_back(spring);
       };
       near.for_each_near(i, [&](std::uint32_t j) {
-        add(j, [&](Spring<D>& spring) { return pair_force(g, i, j, p, dt, spring); });
+        if (may_interact(g, i, j, p)) add(j, [&](Spring<D>& spring) { return pair_force(g, i, j, p, dt, spring); });
       });
       for (std::size_t w = 0; w < walls.size(); ++w)
         add(wall_key(w), [&](Spring<D>& spring) { return wall_force(g, i, walls[w], p, dt, spring); });
