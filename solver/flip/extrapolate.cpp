@@ -48,12 +48,14 @@ std::vector<double> face_distance(const MacGrid<D>& grid, const std::vector<Cell
     box.sweep(order, [&](const Index<D>& f, long k) {
       if (phi[k] <= 0.0) return;
       std::array<double, D> m{};
+      double nearest = far;
       for (int d = 0; d < D; ++d) {
         m[d] = far;
         if (f[d] > box.lo[d] && phi[k - box.stride[d]] >= 0.0) m[d] = std::min(m[d], phi[k - box.stride[d]]);
         if (f[d] < box.hi[d] && phi[k + box.stride[d]] >= 0.0) m[d] = std::min(m[d], phi[k + box.stride[d]]);
+        nearest = std::min(nearest, m[d]);
       }
-      phi[k] = std::min({phi[k], eikonal<D>(m), far});
+      if (nearest < phi[k]) phi[k] = std::min({phi[k], eikonal<D>(m), far});  // else φ > nearest: no change
     });
   return phi;
 }

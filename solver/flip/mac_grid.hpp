@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/types.hpp"
@@ -189,7 +190,8 @@ struct IndexBox {
     }
   }
   /// Calls body(i, k) for every index i of the box (k its flat index), along axis a ascending when
-  /// bit a of `order` is 0, else descending (the 2^D orders of a fast sweep).
+  /// bit a of `order` is 0, else descending (the 2^D orders of a fast sweep): row by row along axis
+  /// 0, the rows in the order of the other axes.
   template <class Body>
   void sweep(unsigned order, Body&& body) const {
     if (empty()) return;
@@ -199,9 +201,11 @@ struct IndexBox {
       f[a] = (order >> a) & 1 ? hi[a] : lo[a];
       k += f[a] * stride[a];
     }
+    const int step = order & 1 ? -1 : 1, length = hi[0] - lo[0] + 1;
     while (true) {
-      body(f, static_cast<std::size_t>(k));
-      int a = 0;
+      Index<D> i = f;
+      for (long j = 0, kj = k; j < length; ++j, i[0] += step, kj += step) body(std::as_const(i), static_cast<std::size_t>(kj));
+      int a = 1;
       for (; a < D; ++a) {
         const bool down = (order >> a) & 1;
         if (down ? f[a] > lo[a] : f[a] < hi[a]) {
