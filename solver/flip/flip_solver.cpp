@@ -89,8 +89,9 @@ void FlipSolver<D>::update_particles(double dt) {
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const double ratio = ps_.is_sand(static_cast<std::size_t>(i)) ? 0.0 : params_.flip_ratio;
-    ps_.v[i] = grid_to_particle<D>(grid_, u_, u_old_, ps_.x[i], ps_.v[i], ratio);
-    ps_.x[i] = advect_rk2<D>(grid_, u_, ps_.x[i], dt);
+    const auto [pic, old] = grid_.velocities_at(u_, u_old_, ps_.x[i]);
+    ps_.v[i] = grid_to_particle<D>(pic, old, ps_.v[i], ratio);
+    ps_.x[i] = advect_rk2<D>(grid_, u_, ps_.x[i], pic, dt);
   }
   for (std::size_t i = 0; i < ps_.size(); ++i)
     if (!ps_.x[i].allFinite() || !ps_.v[i].allFinite())

@@ -182,19 +182,14 @@ std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& 
 }
 
 template <int D>
-Vec<D> grid_to_particle(const MacGrid<D>& grid, const FaceField<D>& u, const FaceField<D>& u_old, const Vec<D>& x,
-                        const Vec<D>& v, double flip_ratio) {
-  Vec<D> pic, change;
-  for (int a = 0; a < D; ++a) {
-    pic[a] = grid.interpolate(a, u[a], x);
-    change[a] = pic[a] - grid.interpolate(a, u_old[a], x);
-  }
+Vec<D> grid_to_particle(const Vec<D>& pic, const Vec<D>& old, const Vec<D>& v, double flip_ratio) {
+  const Vec<D> change = pic - old;
   return (1.0 - flip_ratio) * pic + flip_ratio * (v + change);
 }
 
 template <int D>
-Vec<D> advect_rk2(const MacGrid<D>& grid, const FaceField<D>& u, const Vec<D>& x, double dt) {
-  const Vec<D> mid = x + 0.5 * dt * grid.velocity_at(u, x);
+Vec<D> advect_rk2(const MacGrid<D>& grid, const FaceField<D>& u, const Vec<D>& x, const Vec<D>& u_x, double dt) {
+  const Vec<D> mid = x + 0.5 * dt * u_x;
   Vec<D> out = x + dt * grid.velocity_at(u, mid);
   const double margin = 0.1 * grid.dx;
   for (int d = 0; d < D; ++d)
@@ -211,9 +206,8 @@ Vec<D> advect_rk2(const MacGrid<D>& grid, const FaceField<D>& u, const Vec<D>& x
                                             std::span<const std::uint8_t>);                                    \
   template std::vector<double> air_distance<D>(const MacGrid<D>&, const ParticleBins<D>&, std::span<const Vec<D>>, \
                                               std::span<const double>, const std::vector<Cell>&);              \
-  template Vec<D> grid_to_particle<D>(const MacGrid<D>&, const FaceField<D>&, const FaceField<D>&,              \
-                                      const Vec<D>&, const Vec<D>&, double);                                   \
-  template Vec<D> advect_rk2<D>(const MacGrid<D>&, const FaceField<D>&, const Vec<D>&, double);
+  template Vec<D> grid_to_particle<D>(const Vec<D>&, const Vec<D>&, const Vec<D>&, double);                  \
+  template Vec<D> advect_rk2<D>(const MacGrid<D>&, const FaceField<D>&, const Vec<D>&, const Vec<D>&, double);
 SC_FLIP_TRANSFER(2)
 SC_FLIP_TRANSFER(3)
 #undef SC_FLIP_TRANSFER
