@@ -37,7 +37,10 @@ void seed_box(const MacGrid<D>& grid, const Vec<D>& lo, const Vec<D>& hi, Phase 
 
 template <int D>
 FlipSolver<D>::FlipSolver(const FlipParams<D>& params, FlipParticles<D> particles)
-    : params_(params), ps_(std::move(particles)), grid_(params.tank_lo, params.tank_hi, params.dx) {}
+    : params_(params), ps_(std::move(particles)), grid_(params.tank_lo, params.tank_hi, params.dx), radius_(ps_.size()) {
+  for (std::size_t i = 0; i < ps_.size(); ++i)
+    radius_[i] = 0.5 * particle_size<D>(ps_.m[i] / (ps_.is_sand(i) ? params_.sand.rest_density : params_.water_density));
+}
 
 template <int D>
 double FlipSolver<D>::next_dt() const {
@@ -51,10 +54,7 @@ void FlipSolver<D>::transfer_to_grid() {
   bins_.build(grid_, ps_.x);
   particles_to_grid<D>(grid_, bins_, ps_.x, ps_.v, ps_.m, u_, weight_);
   cells_.label = label_cells<D>(grid_, bins_, ps_.m, ps_.phase);
-  std::vector<double> radius(ps_.size());
-  for (std::size_t i = 0; i < ps_.size(); ++i)
-    radius[i] = 0.5 * particle_size<D>(ps_.m[i] / (ps_.is_sand(i) ? params_.sand.rest_density : params_.water_density));
-  cells_.air_distance = air_distance<D>(grid_, bins_, ps_.x, radius, cells_.label);
+  cells_.air_distance = air_distance<D>(grid_, bins_, ps_.x, radius_, cells_.label);
   cells_.density.assign(grid_.cell_count(), 0.0);
   for (std::size_t c = 0; c < cells_.label.size(); ++c)
     if (is_fluid(cells_.label[c]))

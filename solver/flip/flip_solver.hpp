@@ -107,6 +107,7 @@ class FlipSolver {
   FlipParams<D> params_;
   FlipParticles<D> ps_;
   MacGrid<D> grid_;
+  std::vector<double> radius_;  ///< per particle half its spacing (m/ρ)^(1/D), for the surface distance
   ParticleBins<D> bins_;
   FaceField<D> u_, u_old_, weight_;
   CellState<D> cells_;

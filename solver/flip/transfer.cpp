@@ -171,13 +171,16 @@ std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& 
   double mean_radius = 0.0;
   for (const double r : radius) mean_radius += r;
   const double reach = 4.0 * mean_radius / static_cast<double>(radius.size());  // twice the mean spacing
-  const long n = static_cast<long>(phi.size());
-#pragma omp parallel for schedule(dynamic, 4096)
-  for (long k = 0; k < n; ++k) {
-    if (is_fluid(label[k])) continue;
-    const Index<D> c = MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n);
-    if (borders_fluid<D>(grid, label, c)) phi[k] = surface_distance<D>(grid, bins, x, radius, reach, c);
+  const IndexBox<D> fluid = IndexBox<D>::around(grid.n, [&](std::size_t k) { return is_fluid(label[k]); });
+  Index<D> lo{}, hi{};  // the air cells next to fluid are within one cell of the fluid's box
+  for (int d = 0; d < D; ++d) {
+    lo[d] = std::max(0, fluid.lo[d] - 1);
+    hi[d] = std::min(grid.n[d] - 1, fluid.hi[d] + 1);
   }
+  IndexBox<D>(grid.n, lo, hi).parallel_for_each([&](const Index<D>& c, std::size_t k) {
+    if (!is_fluid(label[k]) && borders_fluid<D>(grid, label, c))
+      phi[k] = surface_distance<D>(grid, bins, x, radius, reach, c);
+  });
   return phi;
 }
 
