@@ -1,5 +1,6 @@
-// Particle-grid transfers of the PIC/FLIP solver (Zhu & Bridson 2005), gathered per grid face so
-// that every sum runs in a fixed particle order: the same bits with any number of threads.
+// Particle-grid transfers of the PIC/FLIP solver (Zhu & Bridson 2005). Every sum runs in a fixed
+// particle order (the bin order), each grid value written by one thread: the same bits with any
+// number of threads.
 #pragma once
 #include <span>
 #include <vector>
