@@ -102,14 +102,13 @@ void FlipSolver<D>::update_particles(double dt) {
 template <int D>
 double FlipSolver<D>::step() {
   const double dt = next_dt();
-  FaceField<D> before_projection;
   {
     auto scope = timers_.time(FlipStage::Transfer);
     transfer_to_grid();
     for (int a = 0; a < D; ++a)  // gravity on every face that received particle mass
       for (std::size_t k = 0; k < u_[a].size(); ++k)
         if (weight_[a][k] > 0.0) u_[a][k] += params_.gravity[a] * dt;
-    before_projection = u_;
+    u_before_projection_ = u_;
   }
   {
     auto scope = timers_.time(FlipStage::Projection);
@@ -119,7 +118,7 @@ double FlipSolver<D>::step() {
       throw BlowUpError(steps_, time_, -1, "grid", "pressure", e.what());
     }
   }
-  sand_step(dt, before_projection);
+  sand_step(dt, u_before_projection_);
   {
     auto scope = timers_.time(FlipStage::Advection);
     FaceField<D>* const fields[] = {&u_, &u_old_};
