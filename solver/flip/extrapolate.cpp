@@ -13,7 +13,8 @@ constexpr double wall = -1.0;  // φ of a wall face: no source, never changed
 /// Godunov upwind solution of |∇φ| = 1 (unit spacing) from the smallest neighbour value per axis.
 template <int D>
 double eikonal(std::array<double, D> m) {
-  std::sort(m.begin(), m.end());
+  for (int i = 1; i < D; ++i)  // insertion sort: D is at most 3
+    for (int j = i; j > 0 && m[j - 1] > m[j]; --j) std::swap(m[j - 1], m[j]);
   double phi = m[0] + 1.0;
   double sum = m[0], sum2 = m[0] * m[0];
   for (int j = 1; j < D && phi > m[j]; ++j) {
