@@ -57,8 +57,8 @@ struct FaceStencil {
     const Index<D> dims = grid.face_dims(a);
     long stride = 1;
     for (int d = 0; d < D; ++d) {
-      const int first = std::max(d == D - 1 ? lo : 0, c[d] - (d == a ? 0 : 1));
-      const int last = std::min(d == D - 1 ? hi : dims[d] - 1, c[d] + 1);
+      const int first = std::max({0, d == D - 1 ? lo : 0, c[d] - (d == a ? 0 : 1)});
+      const int last = std::min({dims[d] - 1, d == D - 1 ? hi : dims[d] - 1, c[d] + 1});
       for (int f = first; f <= last; ++f) {
         const double xf = grid.lo[d] + (f + (d == a ? 0.0 : 0.5)) * grid.dx;
         const double h = std::max(0.0, 1.0 - std::abs(x[d] - xf) / grid.dx);
