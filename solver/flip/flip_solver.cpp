@@ -37,7 +37,10 @@ void seed_box(const MacGrid<D>& grid, const Vec<D>& lo, const Vec<D>& hi, Phase 
 
 template <int D>
 FlipSolver<D>::FlipSolver(const FlipParams<D>& params, FlipParticles<D> particles)
-    : params_(params), ps_(std::move(particles)), grid_(params.tank_lo, params.tank_hi, params.dx) {}
+    : params_(params), ps_(std::move(particles)), grid_(params.tank_lo, params.tank_hi, params.dx), radius_(ps_.size()) {
+  for (std::size_t i = 0; i < ps_.size(); ++i)
+    radius_[i] = 0.5 * particle_size<D>(ps_.m[i] / (ps_.is_sand(i) ? params_.sand.rest_density : params_.water_density));
+}
 
 template <int D>
 double FlipSolver<D>::next_dt() const {
@@ -51,10 +54,7 @@ void FlipSolver<D>::transfer_to_grid() {
   bins_.build(grid_, ps_.x);
   particles_to_grid<D>(grid_, bins_, ps_.x, ps_.v, ps_.m, u_, weight_);
   cells_.label = label_cells<D>(grid_, bins_, ps_.m, ps_.phase);
-  std::vector<double> radius(ps_.size());
-  for (std::size_t i = 0; i < ps_.size(); ++i)
-    radius[i] = 0.5 * particle_size<D>(ps_.m[i] / (ps_.is_sand(i) ? params_.sand.rest_density : params_.water_density));
-  cells_.air_distance = air_distance<D>(grid_, bins_, ps_.x, radius, cells_.label);
+  cells_.air_distance = air_distance<D>(grid_, bins_, ps_.x, radius_, cells_.label);
   cells_.density.assign(grid_.cell_count(), 0.0);
   for (std::size_t c = 0; c < cells_.label.size(); ++c)
     if (is_fluid(cells_.label[c]))
@@ -89,8 +89,9 @@ void FlipSolver<D>::update_particles(double dt) {
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
     const double ratio = ps_.is_sand(static_cast<std::size_t>(i)) ? 0.0 : params_.flip_ratio;
-    ps_.v[i] = grid_to_particle<D>(grid_, u_, u_old_, ps_.x[i], ps_.v[i], ratio);
-    ps_.x[i] = advect_rk2<D>(grid_, u_, ps_.x[i], dt);
+    const auto [pic, old] = grid_.velocities_at(u_, u_old_, ps_.x[i]);
+    ps_.v[i] = grid_to_particle<D>(pic, old, ps_.v[i], ratio);
+    ps_.x[i] = advect_rk2<D>(grid_, u_, ps_.x[i], pic, dt);
   }
   for (std::size_t i = 0; i < ps_.size(); ++i)
     if (!ps_.x[i].allFinite() || !ps_.v[i].allFinite())
@@ -101,14 +102,13 @@ void FlipSolver<D>::update_particles(double dt) {
 template <int D>
 double FlipSolver<D>::step() {
   const double dt = next_dt();
-  FaceField<D> before_projection;
   {
     auto scope = timers_.time(FlipStage::Transfer);
     transfer_to_grid();
     for (int a = 0; a < D; ++a)  // gravity on every face that received particle mass
       for (std::size_t k = 0; k < u_[a].size(); ++k)
         if (weight_[a][k] > 0.0) u_[a][k] += params_.gravity[a] * dt;
-    before_projection = u_;
+    u_before_projection_ = u_;
   }
   {
     auto scope = timers_.time(FlipStage::Projection);
@@ -118,7 +118,7 @@ double FlipSolver<D>::step() {
       throw BlowUpError(steps_, time_, -1, "grid", "pressure", e.what());
     }
   }
-  sand_step(dt, before_projection);
+  sand_step(dt, u_before_projection_);
   {
     auto scope = timers_.time(FlipStage::Advection);
     FaceField<D>* const fields[] = {&u_, &u_old_};

@@ -107,8 +107,10 @@ class FlipSolver {
   FlipParams<D> params_;
   FlipParticles<D> ps_;
   MacGrid<D> grid_;
+  std::vector<double> radius_;  ///< per particle half its spacing (m/ρ)^(1/D), for the surface distance
   ParticleBins<D> bins_;
   FaceField<D> u_, u_old_, weight_;
+  FaceField<D> u_before_projection_;  ///< u after gravity, for the wall friction (kept: no reallocation per step)
   CellState<D> cells_;
   SandCells<D> sand_;
   std::vector<double> p_;

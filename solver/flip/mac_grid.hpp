@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/types.hpp"
@@ -97,23 +98,21 @@ struct MacGrid {
     return u;
   }
 
-  /// Multilinear interpolation of the face values of component a at x [Zhu-Bridson 2005: Updating
-  /// Particle Velocities] ("trilinearly interpolate"); exact for fields linear in x.
-  double interpolate(int a, const std::vector<double>& field, const Vec<D>& x) const {
-    return sample(a, face_dims(a), field, x);
-  }
-  /// Multilinear interpolation of cell-centred values (pressure) at x, clamped to the outermost
-  /// cell centres.
-  double interpolate_cells(const std::vector<double>& field, const Vec<D>& x) const { return sample(-1, n, field, x); }
-  Vec<D> velocity_at(const FaceField<D>& u, const Vec<D>& x) const {
-    Vec<D> v;
-    for (int a = 0; a < D; ++a) v[a] = interpolate(a, u[a], x);
-    return v;
-  }
+  /// The 2^D nodes around x and their multilinear weights, for the face values of component a
+  /// (a = −1: the cell centres), clamped to the outermost nodes: a field's value at x is
+  /// Σ weight·field[node].
+  struct Stencil {
+    std::array<std::size_t, (1 << D)> node;
+    std::array<double, (1 << D)> weight;
 
- private:
-  /// Multilinear interpolation on the nodes of `dims`, staggered along axis a (−1: cell centres).
-  double sample(int a, const Index<D>& dims, const std::vector<double>& field, const Vec<D>& x) const {
+    double of(const std::vector<double>& field) const {
+      double value = 0.0;
+      for (int corner = 0; corner < (1 << D); ++corner) value += weight[corner] * field[node[corner]];
+      return value;
+    }
+  };
+  Stencil stencil(int a, const Vec<D>& x) const {
+    const Index<D> dims = a < 0 ? n : face_dims(a);
     Index<D> i0{};
     std::array<double, D> t{};
     for (int d = 0; d < D; ++d) {
@@ -121,18 +120,42 @@ struct MacGrid {
       i0[d] = std::clamp(static_cast<int>(std::floor(s)), 0, dims[d] - 2);
       t[d] = std::clamp(s - i0[d], 0.0, 1.0);
     }
-    double value = 0.0;
+    Stencil st{};
+    const std::size_t base = flat(i0, dims);
     for (int corner = 0; corner < (1 << D); ++corner) {
-      Index<D> i = i0;
+      std::size_t k = base, stride = 1;
       double w = 1.0;
       for (int d = 0; d < D; ++d) {
         const bool up = (corner >> d) & 1;
-        i[d] += up;
+        k += up ? stride : 0;
+        stride *= static_cast<std::size_t>(dims[d]);
         w *= up ? t[d] : 1.0 - t[d];
       }
-      value += w * field[flat(i, dims)];
+      st.node[corner] = k;
+      st.weight[corner] = w;
     }
-    return value;
+    return st;
+  }
+  /// Multilinear interpolation of the face values of component a at x [Zhu-Bridson 2005: Updating
+  /// Particle Velocities] ("trilinearly interpolate"); exact for fields linear in x.
+  double interpolate(int a, const std::vector<double>& field, const Vec<D>& x) const { return stencil(a, x).of(field); }
+  /// Multilinear interpolation of cell-centred values (pressure) at x, clamped to the outermost
+  /// cell centres.
+  double interpolate_cells(const std::vector<double>& field, const Vec<D>& x) const { return stencil(-1, x).of(field); }
+  Vec<D> velocity_at(const FaceField<D>& u, const Vec<D>& x) const {
+    Vec<D> v;
+    for (int a = 0; a < D; ++a) v[a] = interpolate(a, u[a], x);
+    return v;
+  }
+  /// The velocities of the fields u and w at x (the stencils computed once).
+  std::array<Vec<D>, 2> velocities_at(const FaceField<D>& u, const FaceField<D>& w, const Vec<D>& x) const {
+    std::array<Vec<D>, 2> v;
+    for (int a = 0; a < D; ++a) {
+      const Stencil st = stencil(a, x);
+      v[0][a] = st.of(u[a]);
+      v[1][a] = st.of(w[a]);
+    }
+    return v;
   }
 };
 
@@ -189,7 +212,8 @@ struct IndexBox {
     }
   }
   /// Calls body(i, k) for every index i of the box (k its flat index), along axis a ascending when
-  /// bit a of `order` is 0, else descending (the 2^D orders of a fast sweep).
+  /// bit a of `order` is 0, else descending (the 2^D orders of a fast sweep): row by row along axis
+  /// 0, the rows in the order of the other axes.
   template <class Body>
   void sweep(unsigned order, Body&& body) const {
     if (empty()) return;
@@ -199,9 +223,11 @@ struct IndexBox {
       f[a] = (order >> a) & 1 ? hi[a] : lo[a];
       k += f[a] * stride[a];
     }
+    const int step = order & 1 ? -1 : 1, length = hi[0] - lo[0] + 1;
     while (true) {
-      body(f, static_cast<std::size_t>(k));
-      int a = 0;
+      Index<D> i = f;
+      for (long j = 0, kj = k; j < length; ++j, i[0] += step, kj += step) body(std::as_const(i), static_cast<std::size_t>(kj));
+      int a = 1;
       for (; a < D; ++a) {
         const bool down = (order >> a) & 1;
         if (down ? f[a] > lo[a] : f[a] < hi[a]) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 #include "sand/rigid_body.hpp"
 
 namespace sc::flip {
@@ -24,17 +26,7 @@ void ParticleBins<D>::build(const MacGrid<D>& grid, std::span<const Vec<D>> x) {
 
 namespace {
 
-/// The trilinear weight of [Zhu-Bridson 2005: Transferring to the Grid] between a particle at x
-/// and a face at xf.
-template <int D>
-double hat_weight(const Vec<D>& x, const Vec<D>& xf, double dx) {
-  double w = 1.0;
-  for (int d = 0; d < D; ++d) w *= std::max(0.0, 1.0 - std::abs(x[d] - xf[d]) / dx);
-  return w;
-}
-
-/// The particles' positions, masses and velocities in bin order, so that the particles of a row of
-/// cells lie next to each other in memory.
+/// The particles' positions, masses and velocities in bin order: by cell, the cells in flat order.
 template <int D>
 struct BinnedParticles {
   VecArrayOf<D> x, v;
@@ -51,34 +43,70 @@ struct BinnedParticles {
   }
 };
 
-/// Σ w m and Σ w m v_a over the particles within one cell width of face f (axis a): the cells
-/// f − e_a and f along a, f − 1 .. f + 1 along the other axes, in fixed cell and particle order.
-/// The cells of one row along axis 0 are consecutive bins: one range of binned particles per row.
+/// The faces of component a around a particle at x in cell c with their trilinear weight factor
+/// along each axis, max(0, 1 − |x_d − x_f,d|/Δx) [Zhu-Bridson 2005: Transferring to the Grid]: the
+/// faces whose cells within one cell width include c (along a c and c + 1, along the other axes
+/// c − 1 .. c + 1), along the last axis only the layers lo .. hi; those of factor 0 left out.
 template <int D>
-std::pair<double, double> gather_face(const MacGrid<D>& grid, const ParticleBins<D>& bins,
-                                      const BinnedParticles<D>& ps, int a, const Index<D>& f) {
-  const Vec<D> xf = grid.face_centre(a, f);
-  const int first = std::max(0, f[0] - 1), last = std::min(grid.n[0] - 1, f[0] + (a == 0 ? 0 : 1));
-  Index<D> lo{}, rows{};
-  rows[0] = 1;
-  for (int d = 1; d < D; ++d) {
-    lo[d] = f[d] - 1;
-    rows[d] = d == a ? 2 : 3;
-  }
-  double wm = 0.0, wmv = 0.0;
-  for (std::size_t r = 0; r < MacGrid<D>::count(rows); ++r) {
-    Index<D> c = MacGrid<D>::unflat(r, rows);
-    for (int d = 1; d < D; ++d) c[d] += lo[d];
-    c[0] = first;
-    if (!MacGrid<D>::inside(c, grid.n)) continue;
-    const std::size_t k = grid.cell(c);
-    for (std::size_t j = bins.start[k]; j < bins.start[k + static_cast<std::size_t>(last - first) + 1]; ++j) {
-      const double w = hat_weight<D>(ps.x[j], xf, grid.dx) * ps.m[j];
-      wm += w;
-      wmv += w * ps.v[j][a];
+struct FaceStencil {
+  std::array<std::array<long, 3>, D> offset;  // face index along d times the flat stride of d
+  std::array<std::array<double, 3>, D> factor;
+  Index<D> count{};
+
+  FaceStencil(const MacGrid<D>& grid, int a, const Vec<D>& x, const Index<D>& c, int lo, int hi) {
+    const Index<D> dims = grid.face_dims(a);
+    long stride = 1;
+    for (int d = 0; d < D; ++d) {
+      const int first = std::max({0, d == D - 1 ? lo : 0, c[d] - (d == a ? 0 : 1)});
+      const int last = std::min({dims[d] - 1, d == D - 1 ? hi : dims[d] - 1, c[d] + 1});
+      for (int f = first; f <= last; ++f) {
+        const double xf = grid.lo[d] + (f + (d == a ? 0.0 : 0.5)) * grid.dx;
+        const double h = std::max(0.0, 1.0 - std::abs(x[d] - xf) / grid.dx);
+        if (h > 0.0) {
+          offset[d][count[d]] = f * stride;
+          factor[d][count[d]++] = h;
+        }
+      }
+      stride *= dims[d];
     }
   }
-  return {wm, wmv};
+  /// body(k, w) for each face (k its flat index), w = Π_d factor_d multiplied in axis order.
+  template <class Body>
+  void for_each(Body&& body) const {
+    for (int d = 0; d < D; ++d)
+      if (count[d] == 0) return;
+    Index<D> o{};
+    while (true) {
+      long k = 0;
+      double w = 1.0;
+      for (int d = 0; d < D; ++d) {
+        k += offset[d][o[d]];
+        w *= factor[d][o[d]];
+      }
+      body(static_cast<std::size_t>(k), w);
+      int d = 0;
+      for (; d < D && ++o[d] == count[d]; ++d) o[d] = 0;
+      if (d == D) return;
+    }
+  }
+};
+
+/// Adds w m and w m v_a of the binned particles j in [first, last), in that order, to `wm` and
+/// `wmv` on the faces of every component whose index along the last axis lies in [lo, hi]: a face
+/// receives its particles in bin order whatever the slabs; terms of w = 0 are left out (they change
+/// no sum).
+template <int D>
+void scatter(const MacGrid<D>& grid, const BinnedParticles<D>& ps, std::size_t first, std::size_t last, int lo, int hi,
+             FaceField<D>& wm, FaceField<D>& wmv) {
+  for (std::size_t j = first; j < last; ++j) {
+    const Index<D> c = grid.cell_of(ps.x[j]);
+    for (int a = 0; a < D; ++a)
+      FaceStencil<D>(grid, a, ps.x[j], c, lo, hi).for_each([&](std::size_t k, double w) {
+        w *= ps.m[j];
+        wm[a][k] += w;
+        wmv[a][k] += w * ps.v[j][a];
+      });
+  }
 }
 
 }  // namespace
@@ -87,23 +115,30 @@ template <int D>
 void particles_to_grid(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
                        std::span<const Vec<D>> v, std::span<const double> m, FaceField<D>& u, FaceField<D>& weight) {
   const BinnedParticles<D> binned(bins, x, v, m);
-  const IndexBox<D> occupied =
-      IndexBox<D>::around(grid.n, [&](std::size_t c) { return bins.start[c + 1] > bins.start[c]; });
-  for (int a = 0; a < D; ++a) {  // faces within one cell of a particle's cell: the others get nothing
+  for (int a = 0; a < D; ++a) {
     u[a].assign(grid.face_count(a), 0.0);
     weight[a].assign(grid.face_count(a), 0.0);
-    Index<D> lo{}, hi{};
-    for (int d = 0; d < D; ++d) {
-      lo[d] = std::max(0, occupied.lo[d] - (d == a ? 0 : 1));
-      hi[d] = std::min(grid.n[d] - (d == a ? 0 : 1), occupied.hi[d] + 1);
-    }
-    const IndexBox<D> box(grid.face_dims(a), lo, hi);
-    box.parallel_for_each([&](const Index<D>& f, std::size_t k) {
-      const auto [wm, wmv] = gather_face<D>(grid, bins, binned, a, f);
-      weight[a][k] = wm;
-      u[a][k] = wm > 0.0 ? wmv / wm : 0.0;
-    });
   }
+  // Threads own slabs of face layers along the last axis, of about equal particle counts, and
+  // scatter the particles of the cell layers within one layer of their slab (one range of bins).
+  const int top = grid.n[D - 1], slabs = x.empty() ? 0 : 2 * omp_get_max_threads();
+  const std::size_t layer = grid.cell_count() / static_cast<std::size_t>(top), n = x.size();
+  const auto first_layer = [&](int slab) {
+    if (slab == 0) return 0;
+    if (slab == slabs) return top + 1;
+    return grid.cell_of(binned.x[n * static_cast<std::size_t>(slab) / static_cast<std::size_t>(slabs)])[D - 1];
+  };
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int slab = 0; slab < slabs; ++slab) {
+    const int lo = first_layer(slab), hi = first_layer(slab + 1) - 1;
+    if (lo > hi) continue;
+    const std::size_t first = bins.start[static_cast<std::size_t>(std::max(0, lo - 1)) * layer];
+    const std::size_t last = bins.start[static_cast<std::size_t>(std::min(top, hi + 2)) * layer];
+    scatter<D>(grid, binned, first, last, lo, hi, weight, u);
+  }
+  for (int a = 0; a < D; ++a)
+    for (std::size_t k = 0; k < u[a].size(); ++k)
+      if (weight[a][k] > 0.0) u[a][k] /= weight[a][k];
 }
 
 template <int D>
@@ -171,30 +206,28 @@ std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& 
   double mean_radius = 0.0;
   for (const double r : radius) mean_radius += r;
   const double reach = 4.0 * mean_radius / static_cast<double>(radius.size());  // twice the mean spacing
-  const long n = static_cast<long>(phi.size());
-#pragma omp parallel for schedule(dynamic, 4096)
-  for (long k = 0; k < n; ++k) {
-    if (is_fluid(label[k])) continue;
-    const Index<D> c = MacGrid<D>::unflat(static_cast<std::size_t>(k), grid.n);
-    if (borders_fluid<D>(grid, label, c)) phi[k] = surface_distance<D>(grid, bins, x, radius, reach, c);
+  const IndexBox<D> fluid = IndexBox<D>::around(grid.n, [&](std::size_t k) { return is_fluid(label[k]); });
+  Index<D> lo{}, hi{};  // the air cells next to fluid are within one cell of the fluid's box
+  for (int d = 0; d < D; ++d) {
+    lo[d] = std::max(0, fluid.lo[d] - 1);
+    hi[d] = std::min(grid.n[d] - 1, fluid.hi[d] + 1);
   }
+  IndexBox<D>(grid.n, lo, hi).parallel_for_each([&](const Index<D>& c, std::size_t k) {
+    if (!is_fluid(label[k]) && borders_fluid<D>(grid, label, c))
+      phi[k] = surface_distance<D>(grid, bins, x, radius, reach, c);
+  });
   return phi;
 }
 
 template <int D>
-Vec<D> grid_to_particle(const MacGrid<D>& grid, const FaceField<D>& u, const FaceField<D>& u_old, const Vec<D>& x,
-                        const Vec<D>& v, double flip_ratio) {
-  Vec<D> pic, change;
-  for (int a = 0; a < D; ++a) {
-    pic[a] = grid.interpolate(a, u[a], x);
-    change[a] = pic[a] - grid.interpolate(a, u_old[a], x);
-  }
+Vec<D> grid_to_particle(const Vec<D>& pic, const Vec<D>& old, const Vec<D>& v, double flip_ratio) {
+  const Vec<D> change = pic - old;
   return (1.0 - flip_ratio) * pic + flip_ratio * (v + change);
 }
 
 template <int D>
-Vec<D> advect_rk2(const MacGrid<D>& grid, const FaceField<D>& u, const Vec<D>& x, double dt) {
-  const Vec<D> mid = x + 0.5 * dt * grid.velocity_at(u, x);
+Vec<D> advect_rk2(const MacGrid<D>& grid, const FaceField<D>& u, const Vec<D>& x, const Vec<D>& u_x, double dt) {
+  const Vec<D> mid = x + 0.5 * dt * u_x;
   Vec<D> out = x + dt * grid.velocity_at(u, mid);
   const double margin = 0.1 * grid.dx;
   for (int d = 0; d < D; ++d)
@@ -211,9 +244,8 @@ Vec<D> advect_rk2(const MacGrid<D>& grid, const FaceField<D>& u, const Vec<D>& x
                                             std::span<const std::uint8_t>);                                    \
   template std::vector<double> air_distance<D>(const MacGrid<D>&, const ParticleBins<D>&, std::span<const Vec<D>>, \
                                               std::span<const double>, const std::vector<Cell>&);              \
-  template Vec<D> grid_to_particle<D>(const MacGrid<D>&, const FaceField<D>&, const FaceField<D>&,              \
-                                      const Vec<D>&, const Vec<D>&, double);                                   \
-  template Vec<D> advect_rk2<D>(const MacGrid<D>&, const FaceField<D>&, const Vec<D>&, double);
+  template Vec<D> grid_to_particle<D>(const Vec<D>&, const Vec<D>&, const Vec<D>&, double);                  \
+  template Vec<D> advect_rk2<D>(const MacGrid<D>&, const FaceField<D>&, const Vec<D>&, const Vec<D>&, double);
 SC_FLIP_TRANSFER(2)
 SC_FLIP_TRANSFER(3)
 #undef SC_FLIP_TRANSFER

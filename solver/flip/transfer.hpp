@@ -1,5 +1,6 @@
-// Particle-grid transfers of the PIC/FLIP solver (Zhu & Bridson 2005), gathered per grid face so
-// that every sum runs in a fixed particle order: the same bits with any number of threads.
+// Particle-grid transfers of the PIC/FLIP solver (Zhu & Bridson 2005). Every sum runs in a fixed
+// particle order (the bin order), each grid value written by one thread: the same bits with any
+// number of threads.
 #pragma once
 #include <span>
 #include <vector>
@@ -45,17 +46,17 @@ template <int D>
 std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
                                  std::span<const double> radius, const std::vector<Cell>& label);
 
-/// Grid-to-particle update [Zhu-Bridson 2005: Updating Particle Velocities]: PIC takes the
-/// interpolated new grid velocity, FLIP adds the interpolated change u − u_old to the particle's
-/// velocity; v ← (1 − r) v_PIC + r v_FLIP with the FLIP ratio r (r = 0 for sand: PIC, "for viscous
-/// flow such as sand"; r near 1 for water).
+/// Grid-to-particle update [Zhu-Bridson 2005: Updating Particle Velocities] of a particle of
+/// velocity v, given the new and the old grid velocity interpolated at the particle (pic, old): PIC
+/// takes pic, FLIP adds the change pic − old to the particle's velocity; v ← (1 − r) v_PIC + r v_FLIP
+/// with the FLIP ratio r (r = 0 for sand: PIC, "for viscous flow such as sand"; r near 1 for water).
 template <int D>
-Vec<D> grid_to_particle(const MacGrid<D>& grid, const FaceField<D>& u, const FaceField<D>& u_old, const Vec<D>& x,
-                        const Vec<D>& v, double flip_ratio);
+Vec<D> grid_to_particle(const Vec<D>& pic, const Vec<D>& old, const Vec<D>& v, double flip_ratio);
 
-/// Midpoint (RK2) advection through the grid velocity [Zhu-Bridson 2005: Moving Particles], then
-/// a particle that ends in a wall is moved just inside the tank (a tenth of Δx from the wall).
+/// Midpoint (RK2) advection through the grid velocity u [Zhu-Bridson 2005: Moving Particles] from x,
+/// where u's velocity is u_x, then a particle that ends in a wall is moved just inside the tank (a
+/// tenth of Δx from the wall).
 template <int D>
-Vec<D> advect_rk2(const MacGrid<D>& grid, const FaceField<D>& u, const Vec<D>& x, double dt);
+Vec<D> advect_rk2(const MacGrid<D>& grid, const FaceField<D>& u, const Vec<D>& x, const Vec<D>& u_x, double dt);
 
 }  // namespace sc::flip
