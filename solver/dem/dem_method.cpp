@@ -23,18 +23,25 @@ double material_height(const CaseSpec& spec, int dim) {
   return hi - lo;
 }
 
-/// The tank's closed sides as contact planes through its faces, normals into the tank.
+/// The contact plane through the side of the box [lo, hi] on axis d facing `outward` (-1: at lo,
+/// +1: at hi), its normal into the box.
+template <int D>
+dem::Plane<D> box_side(const Vec<D>& lo, const Vec<D>& hi, int d, int outward, bool rough) {
+  dem::Plane<D> w{Vec<D>::Zero(), Vec<D>::Zero(), rough};
+  w.point[d] = outward < 0 ? lo[d] : hi[d];
+  w.normal[d] = -outward;
+  return w;
+}
+
+/// The tank's closed sides as contact planes, rough where the side is "no_slip".
 template <int D>
 std::vector<dem::Plane<D>> tank_planes(const TankSpec& tank) {
   std::vector<dem::Plane<D>> walls;
   for (int d = 0; d < D; ++d)
-    for (const int outward : {-1, 1}) {
-      if (!tank.closed(d, outward)) continue;
-      dem::Plane<D> w{Vec<D>::Zero(), Vec<D>::Zero(), tank.rule(d, outward) == WallRule::NoSlip};
-      w.point[d] = outward < 0 ? tank.min[d] : tank.max[d];
-      w.normal[d] = -outward;
-      walls.push_back(w);
-    }
+    for (const int outward : {-1, 1})
+      if (tank.closed(d, outward))
+        walls.push_back(box_side<D>(to_vec<D>(tank.min), to_vec<D>(tank.max), d, outward,
+                                    tank.rule(d, outward) == WallRule::NoSlip));
   return walls;
 }
 
@@ -111,16 +118,12 @@ dem::Grains<D> packed_block(const CaseSpec& spec, const DemCaseParams& own, doub
   top[D - 1] = lo[D - 1] + (rows + std::ceil(rows / 3.0) + 1.0) * dx;
   dem::Grains<D> g;
   seed_grains<D>(lo, top, dx, spec.sand.rest_density, own.polydispersity, static_cast<unsigned>(b + 1), g);
+  if (g.size() == 0) return g;  // a block narrower than a spacing holds no grain
   dem::Params p = contact_params<D>(spec, own, dx, g);
   std::vector<dem::Plane<D>> mould;
   for (int d = 0; d < D; ++d)
-    for (const int outward : {-1, 1}) {
-      if (d == D - 1 && outward > 0) continue;  // open top
-      dem::Plane<D> w{Vec<D>::Zero(), Vec<D>::Zero(), false};
-      w.point[d] = outward < 0 ? lo[d] : hi[d];
-      w.normal[d] = -outward;
-      mould.push_back(w);
-    }
+    for (const int outward : {-1, 1})
+      if (d < D - 1 || outward < 0) mould.push_back(box_side<D>(lo, hi, d, outward, false));  // open top
   const Vec<D> gravity = to_vec<D>(spec.gravity);
   const double h = dem::stable_step(g, p), weight_scale = g.size() * g.mass(0) * gravity.norm() * (top - lo)[D - 1];
   dem::NeighbourList<D> cells;
@@ -276,6 +279,9 @@ std::unique_ptr<Method<D>> make_dem_method(const CaseSpec& spec, double dx) {
     else seed_grains<D>(to_vec<D>(block.min), to_vec<D>(block.max), dx, spec.sand.rest_density, own.polydispersity,
                         static_cast<unsigned>(b + 1), g);
   }
+  if (g.size() == 0)
+    throw InputError(spec.file, "/blocks", "method \"dem\": no grain fits in the sand blocks at spacing " +
+                                               json(dx).dump() + " m");
   const dem::Params p = contact_params<D>(spec, own, dx, g);
   const int substeps = static_cast<int>(std::ceil(spec.dt_max / dem::stable_step(g, p) - 1e-9));
   return std::make_unique<DemMethod<D>>(std::move(g), p, tank_planes<D>(*spec.tank), to_vec<D>(spec.gravity),
