@@ -8,6 +8,7 @@
 
 #include "baseline.hpp"
 #include "case/case_file.hpp"
+#include "core/errors.hpp"
 #include "io/json_reader.hpp"
 #include "runner.hpp"
 
@@ -73,6 +74,35 @@ BOOST_AUTO_TEST_CASE(methods_asked_are_those_the_case_supports_in_order) {
   BOOST_TEST(methods_to_run(spec, o) == std::vector<std::string>({"flip", "sph"}));
   BOOST_TEST(run_id(spec, "sph") == "tank");
   BOOST_TEST(run_id(spec, "flip") == "tank.flip");
+}
+
+BOOST_AUTO_TEST_CASE(a_tier_that_lists_methods_runs_those_with_all) {
+  json doc = tiny_tank();
+  doc["tiers"]["quick"]["methods"] = {"sph"};
+  const CaseSpec spec = load_case(doc, "tank.json");
+  ValidateOptions o;
+  o.methods = {"all"};
+  o.tier = "quick";
+  BOOST_TEST(methods_to_run(spec, o) == std::vector<std::string>({"sph"}));
+  o.tier = "full";
+  BOOST_TEST(methods_to_run(spec, o) == std::vector<std::string>({"sph", "flip"}));
+  o.methods = {"flip"};  // a method asked by name runs in any tier
+  o.tier = "quick";
+  BOOST_TEST(methods_to_run(spec, o) == std::vector<std::string>({"flip"}));
+  BOOST_TEST(spec.parameters_hash == load_case(tiny_tank(), "tank.json").parameters_hash);
+}
+
+BOOST_AUTO_TEST_CASE(a_tier_lists_only_methods_the_case_supports_once) {
+  for (const json& list : {json{"sph", "dem"}, json{"flip", "flip"}, json::array(), json{3}}) {
+    json doc = tiny_tank();
+    doc["tiers"]["quick"]["methods"] = list;
+    try {
+      load_case(doc, "tank.json");
+      BOOST_FAIL("accepted tier methods " + list.dump());
+    } catch (const InputError& e) {
+      BOOST_TEST(std::string(e.what()).find("/tiers/quick/methods") != std::string::npos, e.what());
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(one_case_by_two_methods_side_by_side_with_baselines_per_method) {

@@ -5,4 +5,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash tools/install_deps.sh
 bash tools/build.sh
-./build/sandcastle validate --tier quick --out reports/quick
+./build/sandcastle validate --tier quick --method all --out reports/quick

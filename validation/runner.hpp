@@ -65,12 +65,14 @@ struct ValidateOptions {
   double max_particles = kDefaultMaxParticles;     ///< estimated particles above which a run is refused (--max-particles)
   bool errata = false;             ///< also run each erratum's printed form on its cases (--errata; validation/errata.hpp)
   /// Methods to run each case with (--method), each one the case supports, in this order; empty:
-  /// the case's own "method"; {"all"}: its own method, then every one under its "methods".
+  /// the case's own "method"; {"all"}: the tier's "methods" where it lists them, else the case's own
+  /// method, then every one under its "methods".
   std::vector<std::string> methods;
 };
 
 /// The methods `options.methods` asks of a case that it supports, in the order asked (its own
-/// method when none is asked). Empty when the case supports none of them.
+/// method when none is asked; for "all", the methods of the tier). Empty when the case supports none
+/// of them.
 std::vector<std::string> methods_to_run(const CaseSpec& spec, const ValidateOptions& options);
 
 /// Where a case's run by `method` lives: "<case>" for the case's own method, "<case>.<method>"

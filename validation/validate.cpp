@@ -99,6 +99,8 @@ std::vector<std::string> methods_to_run(const CaseSpec& spec, const ValidateOpti
   if (options.methods.empty()) return {spec.method};
   std::vector<std::string> asked = options.methods;
   if (asked == std::vector<std::string>{"all"}) {
+    const auto tier = spec.tiers.find(options.tier);
+    if (tier != spec.tiers.end() && !tier->second.methods.empty()) return tier->second.methods;
     asked = {spec.method};
     for (const auto& [name, params] : spec.methods.items()) asked.push_back(name);
   }

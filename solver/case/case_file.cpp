@@ -48,6 +48,20 @@ void read_time(JsonObject o, CaseSpec& c) {
   o.finish();
 }
 
+std::vector<std::string> read_tier_methods(JsonObject& t, const CaseSpec& c) {
+  const json& list = t.raw("methods");
+  if (!list.is_array() || list.empty()) t.fail("methods", "must be a non-empty array of method names");
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string where = "methods/" + std::to_string(k);
+    if (!list[k].is_string() || !c.supports(list[k].get<std::string>()))
+      t.fail(where, "must name a method the case supports (its \"method\" or a key of \"methods\")");
+    if (std::find(names.begin(), names.end(), list[k].get<std::string>()) != names.end()) t.fail(where, "is listed twice");
+    names.push_back(list[k].get<std::string>());
+  }
+  return names;
+}
+
 void read_tiers(JsonObject o, CaseSpec& c) {
   for (const char* tier : {"quick", "full"}) {
     if (std::string(tier) == "quick" && !o.has(tier)) continue;  // a scene outside the quick (CI) suite
@@ -57,6 +71,7 @@ void read_tiers(JsonObject o, CaseSpec& c) {
     for (double s : spec.spacings)
       if (!(s > 0.0)) t.fail("spacings", "every spacing must be > 0");
     spec.end_time = t.positive("end_time", 0.0);
+    if (t.has("methods")) spec.methods = read_tier_methods(t, c);
     t.finish();
     c.tiers[tier] = spec;
   }

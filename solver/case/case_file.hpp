@@ -24,6 +24,9 @@ namespace sc {
 struct TierSpec {
   std::vector<double> spacings;  ///< particle spacings [m], coarse to fine; the last one is reported
   double end_time = 0.0;         ///< [s]; 0 = the case's time.end
+  /// The methods `validate --method all` runs in this tier (empty: every method the case supports).
+  /// A method that fails the case's gates at this tier's spacings runs in the full tier only.
+  std::vector<std::string> methods;
 };
 
 struct CaseSpec {

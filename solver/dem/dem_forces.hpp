@@ -5,7 +5,7 @@
 #pragma once
 #include <span>
 
-#include "dem/cell_grid.hpp"
+#include "neighbours/cell_grid.hpp"
 #include "dem/contact_laws.hpp"
 #include "dem/grains.hpp"
 #include "dem/neighbour_list.hpp"

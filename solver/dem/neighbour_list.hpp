@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "dem/cell_grid.hpp"
+#include "neighbours/cell_grid.hpp"
 
 namespace sc::dem {
 

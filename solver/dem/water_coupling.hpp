@@ -10,7 +10,7 @@
 // and propagate_wetness.
 #pragma once
 #include "core/particle_set.hpp"
-#include "dem/cell_grid.hpp"
+#include "neighbours/cell_grid.hpp"
 #include "dem/grains.hpp"
 
 namespace sc::dem {

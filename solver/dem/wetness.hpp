@@ -4,7 +4,7 @@
 // and, unlike the seed's write-up, the same water is taken from the source, so the water held by
 // all grains is conserved (to round-off; exactly unchanged with k_p = 0). Counted in kilograms.
 #pragma once
-#include "dem/cell_grid.hpp"
+#include "neighbours/cell_grid.hpp"
 #include "dem/grains.hpp"
 
 namespace sc::dem {

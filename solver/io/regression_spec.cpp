@@ -83,6 +83,9 @@ std::string parameters_hash(const json& case_document) {
   j.erase("description");
   j.erase("regression");
   j.erase("methods");  // other methods' parameters; a run by one of them adds its own (method/registry.cpp)
+  if (j.contains("tiers"))  // which methods a tier runs is no parameter of any run
+    for (auto& [name, tier] : j["tiers"].items())
+      if (tier.is_object()) tier.erase("methods");
   std::uint64_t hash = 1469598103934665603ull;
   for (const unsigned char c : j.dump()) {
     hash ^= c;

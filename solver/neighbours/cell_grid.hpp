@@ -1,7 +1,9 @@
-// Uniform cell grid for the DEM gather loops: points are sorted into cells once per step (a serial
-// counting sort, so the order is fixed), and a query visits the 3^D cells around a position in
-// cell order, each cell's points in index order. Every grain sums its own contacts in this order,
-// so the result is bitwise the same for any number of threads.
+// Uniform cell grid over bare points (positions only), for gather loops outside the SPH particle
+// set: the DEM contacts and wetness, and the observers that count neighbours of any method's
+// particles. Points are sorted into cells once (a serial counting sort, so the order is fixed), and a
+// query visits the 3^D cells around a position in cell order, each cell's points in index order.
+// A point that sums over its neighbours in this order gets bitwise the same result for any number
+// of threads.
 #pragma once
 #include <array>
 #include <cmath>
@@ -12,7 +14,7 @@
 
 #include "core/types.hpp"
 
-namespace sc::dem {
+namespace sc {
 
 template <int D>
 class CellGrid {
@@ -82,4 +84,4 @@ class CellGrid {
   std::vector<std::uint32_t> start_, cell_of_, sorted_;
 };
 
-}  // namespace sc::dem
+}  // namespace sc
