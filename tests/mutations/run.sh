@@ -1,23 +1,27 @@
 #!/usr/bin/env bash
 # Mutation check: applies each small physics mutation of tests/mutations/mutations.tsv (a sign, a
-# factor, an index, a dropped term) to a scratch git worktree of HEAD, builds the unit tests, runs
-# them and reports whether the tests caught the mutation (build error or failing test) or it
-# survived. Not part of CI: one build per mutation.
+# factor, an index, a dropped term) to a scratch git worktree of HEAD, builds, and runs the unit
+# tests (every CTest unit suite, two at a time, stopping at the first failure); a mutation the unit
+# tests miss then meets the quick validation tier (its gates and the regression limits of the
+# blessed baselines). It reports whether the mutation was caught (build error, failing test, failed
+# gate or regression) and by what, or that it survived. Not part of CI: one build per mutation.
 #
-# Usage: tests/mutations/run.sh [--only ID,ID,...] [--tests BOOST_RUN_TEST_FILTER] [--timeout SECONDS]
-#   --tests  passed to unit_tests --run_test (default: all suites)
+# Usage: tests/mutations/run.sh [--only ID,ID,...] [--tests BOOST_RUN_TEST_FILTER] [--no-suite] [--timeout SECONDS]
+#   --tests     run only these unit tests (unit_tests --run_test filter) instead of every suite
+#   --no-suite  do not run the quick validation tier on survivors of the unit tests
 # Exit code: 0 when every applied mutation was caught, 1 otherwise.
 set -euo pipefail
 
 repo=$(git rev-parse --show-toplevel)
 manifest="$repo/tests/mutations/mutations.tsv"
-only="" tests="" timeout_s=900
+only="" tests="" suite=1 timeout_s=900
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --only) only="$2"; shift 2 ;;
     --tests) tests="$2"; shift 2 ;;
+    --no-suite) suite=0; shift ;;
     --timeout) timeout_s="$2"; shift 2 ;;
-    *) echo "usage: $0 [--only ID,...] [--tests FILTER] [--timeout S]" >&2; exit 2 ;;
+    *) echo "usage: $0 [--only ID,...] [--tests FILTER] [--no-suite] [--timeout S]" >&2; exit 2 ;;
   esac
 done
 
@@ -28,15 +32,25 @@ trap cleanup EXIT
 src="$scratch/src" build="$scratch/src/build"
 
 run_tests() {
-  local args=(--log_level=nothing --report_level=no)
-  [[ -n "$tests" ]] && args+=(--run_test="$tests")
-  (cd "$src" && timeout "$timeout_s" "$build/unit_tests" "${args[@]}" >/dev/null 2>&1)
+  if [[ -n "$tests" ]]; then
+    (cd "$src" && timeout "$timeout_s" "$build/unit_tests" --run_test="$tests" --log_level=nothing --report_level=no >/dev/null 2>&1)
+  else
+    (cd "$build" && timeout "$timeout_s" ctest -L unit -j2 --stop-on-failure >/dev/null 2>&1)
+  fi
 }
-build_tests() { cmake --build "$build" --target unit_tests -j2 >"$scratch/build.log" 2>&1; }
+# The quick validation tier of the mutated code against the gates and the blessed baselines.
+run_suite() {
+  timeout "$timeout_s" "$build/sandcastle" validate --tier quick --root "$src" --out "$scratch/suite" --no-plots \
+    >"$scratch/suite.log" 2>&1
+}
+build_tests() { cmake --build "$build" -j2 >"$scratch/build.log" 2>&1; }
 
 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER_LAUNCHER=ccache >/dev/null
 build_tests || { echo "baseline does not build (see $scratch/build.log)" >&2; exit 2; }
 run_tests || { echo "baseline unit tests fail: fix them before a mutation check" >&2; exit 2; }
+if [[ $suite -eq 1 ]]; then
+  run_suite || { echo "baseline quick tier fails (see $scratch/suite.log): fix it before a mutation check" >&2; exit 2; }
+fi
 
 caught=0 survived=0 skipped=0 survivors=()
 while IFS=$'\t' read -r id file from to; do
@@ -54,7 +68,8 @@ PY
     echo "SKIPPED   $id ($file: text not found exactly once)"; skipped=$((skipped + 1)); continue
   fi
   if ! build_tests; then verdict="CAUGHT    $id (does not build)"; caught=$((caught + 1))
-  elif ! run_tests; then verdict="CAUGHT    $id"; caught=$((caught + 1))
+  elif ! run_tests; then verdict="CAUGHT    $id (unit tests)"; caught=$((caught + 1))
+  elif [[ $suite -eq 1 ]] && ! run_suite; then verdict="CAUGHT    $id (quick tier)"; caught=$((caught + 1))
   else verdict="SURVIVED  $id"; survived=$((survived + 1)); survivors+=("$id"); fi
   echo "$verdict"
   git -C "$src" checkout -- "$file"
