@@ -19,8 +19,9 @@ namespace {
 // A sand particle with every floating-point field set to a distinct non-trivial value.
 template <int D>
 std::size_t add_particle(ParticleSet<D>& ps, double mass, const Vec<D>& x, const Vec<D>& v,
-                         double absorbed, double saturation) {
+                         double absorbed, double saturation, std::uint8_t level = 1) {
   const std::size_t i = ps.append();
+  ps.level[i] = level;
   ps.x[i] = x; ps.v[i] = v; ps.m[i] = mass; ps.rho0[i] = 1000.0; ps.rho[i] = 1010.0 + mass;
   ps.h[i] = 2.0 * std::pow(mass / ps.rho0[i], 1.0 / D);
   ps.p[i] = 50.0 * mass; ps.phase[i] = static_cast<std::uint8_t>(Phase::Sand);
@@ -175,7 +176,7 @@ BOOST_AUTO_TEST_CASE(every_particle_field_has_a_split_merge_rule) {
 
 BOOST_AUTO_TEST_CASE(split_conserves_mass_momentum_centre_and_water) {
   ParticleSet<3> ps, kids;
-  add_particle<3>(ps, 0.008, Vec<3>(0.1, 0.2, 0.3), Vec<3>(1.5, -2.0, 0.25), 0.002, 0.4);
+  add_particle<3>(ps, 0.008, Vec<3>(0.1, 0.2, 0.3), Vec<3>(1.5, -2.0, 0.25), 0.002, 0.4, 3);
   const double delta = 0.5 * particle_size<3>(0.004 / 1000.0);
   split_particle<3>(ps, 0, Vec<3>(0, 0, 1), delta, kids);
   BOOST_TEST(total(kids.m) == 0.008, tt::tolerance(1e-12));
@@ -188,8 +189,8 @@ BOOST_AUTO_TEST_CASE(split_conserves_mass_momentum_centre_and_water) {
   BOOST_TEST(kids.h[0] == ps.h[0] / std::cbrt(2.0), tt::tolerance(1e-12));
   BOOST_TEST(kids.saturation[1] == 0.4);
   BOOST_TEST(kids.id[0] != kids.id[1]);
-  BOOST_TEST(level_of<3>(ps.m[0], 1000.0, params_for<3>(0.01)) == 3);
-  BOOST_TEST(level_of<3>(kids.m[0], 1000.0, params_for<3>(0.01)) == 2);
+  BOOST_TEST(kids.level[0] == 2);
+  BOOST_TEST(kids.level[1] == 2);
 }
 
 BOOST_AUTO_TEST_CASE(merge_conserves_mass_momentum_centre_and_reports_energy_loss) {
@@ -218,6 +219,20 @@ BOOST_AUTO_TEST_CASE(merge_refuses_different_phases) {
   BOOST_CHECK_THROW(merge_pair<2>(ps, 0, 1, out), std::invalid_argument);
 }
 
+BOOST_AUTO_TEST_CASE(merge_raises_the_level_split_lowers_it_and_level_0_does_not_split) {
+  ParticleSet<2> ps, out;
+  add_particle<2>(ps, 0.1, Vec<2>(0, 0), Vec<2>(0, 0), 0.0, 0.0, 0);
+  add_particle<2>(ps, 0.1, Vec<2>(0.01, 0), Vec<2>(0, 0), 0.0, 0.0, 0);
+  merge_pair<2>(ps, 0, 1, out);
+  BOOST_TEST(out.level[0] == 1);
+  split_particle<2>(out, 0, Vec<2>(1, 0), 0.001, out);
+  BOOST_TEST(out.level[1] == 0);
+  BOOST_TEST(out.level[2] == 0);
+  BOOST_CHECK_THROW(split_particle<2>(ps, 0, Vec<2>(1, 0), 0.001, out), std::invalid_argument);
+  ps.level[1] = 1;
+  BOOST_CHECK_THROW(merge_pair<2>(ps, 0, 1, out), std::invalid_argument);  // levels differ
+}
+
 BOOST_AUTO_TEST_CASE(split_then_merge_returns_the_parent_2d) { split_then_merge_is_identity<2>(); }
 BOOST_AUTO_TEST_CASE(split_then_merge_returns_the_parent_3d) { split_then_merge_is_identity<3>(); }
 
@@ -242,16 +257,15 @@ std::size_t count_flip_flops(const AdaptiveParams& p, std::size_t& splits, std::
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::uniform_int_distribution<int> level(p.min_level, p.max_level);
-  const double m0 = p.finest_volume * 1000.0;
   std::size_t flips = 0;
   for (int trial = 0; trial < 20000; ++trial) {
-    const double m = m0 * std::ldexp(1.0, level(rng));
-    const double elfs = 12.0 * particle_size<D>(m / 1000.0) * u(rng);
-    const Decision d = decide<D>(elfs, m, 1000.0, p);
+    const int L = level(rng);
+    const double elfs = 12.0 * particle_size<D>(std::ldexp(p.finest_volume, L)) * u(rng);
+    const Decision d = decide<D>(elfs, L, p);
     splits += d == Decision::Split;
     merges += d == Decision::Merge;
-    if (d == Decision::Split && decide<D>(elfs, 0.5 * m, 1000.0, p) == Decision::Merge) ++flips;
-    if (d == Decision::Merge && decide<D>(elfs, 2.0 * m, 1000.0, p) == Decision::Split) ++flips;
+    if (d == Decision::Split && decide<D>(elfs, L - 1, p) == Decision::Merge) ++flips;
+    if (d == Decision::Merge && decide<D>(elfs, L + 1, p) == Decision::Split) ++flips;
   }
   return flips;
 }
@@ -269,12 +283,11 @@ BOOST_AUTO_TEST_CASE(hysteresis_on_random_elfs) {
 
 BOOST_AUTO_TEST_CASE(levels_bound_split_and_merge) {
   const AdaptiveParams p = params_for<3>(0.01);
-  const double m_min = 1e-3, m_max = 16e-3;  // levels 0 and 4
-  BOOST_TEST(level_of<3>(m_max, 1000.0, p) == 4);
-  BOOST_TEST(decide<3>(1e-9, m_min, 1000.0, p) == Decision::Keep);
-  BOOST_TEST(decide<3>(1e-9, 2 * m_min, 1000.0, p) == Decision::Split);
-  BOOST_TEST(decide<3>(1e9, m_max, 1000.0, p) == Decision::Keep);
-  BOOST_TEST(decide<3>(1e9, 0.5 * m_max, 1000.0, p) == Decision::Merge);
+  BOOST_TEST(size_of_level<3>(4, p) == 0.01 * std::cbrt(16.0), tt::tolerance(1e-14));  // the volume doubles per level
+  BOOST_TEST(decide<3>(1e-9, 0, p) == Decision::Keep);
+  BOOST_TEST(decide<3>(1e-9, 1, p) == Decision::Split);
+  BOOST_TEST(decide<3>(1e9, 4, p) == Decision::Keep);
+  BOOST_TEST(decide<3>(1e9, 3, p) == Decision::Merge);
 }
 
 BOOST_AUTO_TEST_CASE(split_direction_points_away_from_a_neighbour) {
@@ -291,8 +304,9 @@ BOOST_AUTO_TEST_CASE(merge_pairing_is_nearest_same_level_in_index_order) {
   ParticleSet<2> ps;
   const double m = 0.1 * 0.1 * 1000.0;  // level 2 for r0 = 0.05
   for (double x : {0.0, 0.1, 0.35, 0.21, 0.5})
-    add_particle<2>(ps, m, Vec<2>(x, 0), Vec<2>(0, 0), 0.0, 0.0);
+    add_particle<2>(ps, m, Vec<2>(x, 0), Vec<2>(0, 0), 0.0, 0.0, 2);
   ps.m[4] = 2 * m;  // another level: never paired with the others
+  ps.level[4] = 3;
   AdaptiveParams p = params_for<2>(0.05);
   auto all = [&](std::size_t) {
     std::vector<std::size_t> j(ps.size());

@@ -79,7 +79,7 @@ BOOST_AUTO_TEST_CASE(surface_lfs_cap_keeps_the_surface_fine) {
   BOOST_TEST(std::abs(elfs_near(ps, elfs, 0.3, 0.0) - 3.0 * kDx) < 0.5 * kDx);
   BOOST_TEST(std::abs(elfs_near(ps, elfs, 0.3, 0.1) - 13.0 * kDx) < 0.5 * kDx);
   const double r0 = std::sqrt(water_spec().params.finest_volume);  // level-0 particle size
-  BOOST_TEST(decide<2>(elfs_near(ps, elfs, 0.3, 0.0), ps.m[0], kRho0, water_spec().params) == Decision::Keep);
+  BOOST_TEST(decide<2>(elfs_near(ps, elfs, 0.3, 0.0), ps.level[0], water_spec().params) == Decision::Keep);
   BOOST_TEST(elfs_near(ps, elfs, 0.3, 0.1) > 4.0 * r0);  // deep inside: a merge candidate
 }
 

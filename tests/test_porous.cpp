@@ -8,6 +8,7 @@
 
 #include <boost/test/unit_test.hpp>
 
+#include "adaptive/split_merge.hpp"
 #include "porous/capillary.hpp"
 #include "porous/darcy.hpp"
 #include "porous/partial_water_pressure.hpp"
@@ -386,6 +387,44 @@ BOOST_AUTO_TEST_CASE(a_fast_flow_keeps_the_wet_zone_under_the_pond_pressure) {
     v_max = std::max(v_max, -ps.pore_velocity[i][1]);
   }
   BOOST_TEST(v_max <= 1.01 * v_min);
+}
+
+BOOST_AUTO_TEST_CASE(merged_water_beside_a_bed_keeps_its_level_and_the_rest_density_of_full_water) {
+  // A merged water particle (level 1: twice the mass and volume of a sampled one, support
+  // 2^(1/2) h0 in 2-D) and a sampled one (level 0) resting on a fixed bed with little room left,
+  // one exchange step: both stay nearly full at their level, so both keep a rest density within 10 % of rho^f and
+  // the merged one stays level 1, so it can split again. Reading the full mass of the sampled
+  // particle for every water particle gave the merged one rho^f + m0 W(0, h) (about 1.7 rho^f here),
+  // which also read as level 0 from m/rho0.
+  const PorousParams p = test_params();
+  ParticleSet<2> ps;
+  add_block(ps, p, Phase::Boundary, {0.0, 0.0}, {0.2, 0.05}, 0.98);
+  const auto add_water = [&](double x, std::uint8_t level) {
+    const std::size_t i = ps.append();
+    ps.x[i] = {x, 0.05};
+    ps.m[i] = std::ldexp(p.water_mass, level);
+    ps.h[i] = p.water_support * std::pow(2.0, 0.5 * level);
+    ps.rho[i] = ps.rho0[i] = kRho;
+    ps.phase[i] = static_cast<std::uint8_t>(Phase::Water);
+    ps.level[i] = level;
+    return i;
+  };
+  const std::size_t merged = add_water(0.05, 1), sampled = add_water(0.15, 0);
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  PorousWork<2> w;
+  porous_step(ps, nb, p, Vec<2>(0.0, -9.81), 1e-5, w);
+  BOOST_TEST(ps.m[merged] > 1.9 * p.water_mass);
+  BOOST_TEST(ps.m[sampled] > 0.9 * p.water_mass);
+  BOOST_TEST(std::abs(ps.rho0[merged] - kRho) < 0.1 * kRho);
+  BOOST_TEST(std::abs(ps.rho0[sampled] - kRho) < 0.1 * kRho);
+  BOOST_TEST(ps.level[merged] == 1);
+  AdaptiveParams levels;
+  levels.finest_volume = p.water_mass / kRho;
+  BOOST_TEST((decide<2>(0.0, ps.level[merged], levels) == Decision::Split));
+  BOOST_TEST(!is_partial_water(ps, merged, p.water_mass));  // nearly full at its level
+  ps.m[merged] = 0.9 * p.water_mass;  // the mass of a nearly full level-0 particle: partial at level 1
+  BOOST_TEST(is_partial_water(ps, merged, p.water_mass));
 }
 
 BOOST_AUTO_TEST_CASE(pond_pressure_is_the_weight_of_the_water_column) {

@@ -79,7 +79,7 @@ std::vector<double> union_of_balls(const ParticleSet<D>& ps, const AdaptivitySpe
   std::vector<double> f(grid.size(), grid.dx);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (!adapted(ps, spec, i)) continue;
-    const double r = particle_size<D>(ps.m[i] / ps.rho0[i]);
+    const double r = size_of_level<D>(ps.level[i], spec.params);
     const double reach = r + grid.dx;
     std::array<int, D> lo{}, hi{};
     for (int d = 0; d < D; ++d) {
@@ -113,7 +113,7 @@ BackgroundGrid<D> grid_around(const ParticleSet<D>& ps, const AdaptivitySpec& sp
     if (!adapted(ps, spec, i)) continue;
     lo = lo.cwiseMin(ps.x[i]);
     hi = hi.cwiseMax(ps.x[i]);
-    r_max = std::max(r_max, particle_size<D>(ps.m[i] / ps.rho0[i]));
+    r_max = std::max(r_max, size_of_level<D>(ps.level[i], spec.params));
   }
   BackgroundGrid<D> grid;
   grid.dx = spec.grid_cell;

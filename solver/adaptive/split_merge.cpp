@@ -16,7 +16,7 @@ namespace {
 using R = FieldRule;
 // One line per ParticleSet field (visit_fields names). A field missing here cannot be split or
 // merged: field_rule throws.
-constexpr std::array<std::pair<std::string_view, FieldRule>, 22> kRules{{
+constexpr std::array<std::pair<std::string_view, FieldRule>, 23> kRules{{
     {"position", R::Position},        {"velocity", R::Intensive},
     {"force", R::Extensive},          {"mass", R::Extensive},
     {"support_radius", R::Size},      {"density", R::Intensive},
@@ -28,6 +28,7 @@ constexpr std::array<std::pair<std::string_view, FieldRule>, 22> kRules{{
     {"saturation", R::Intensive},     {"porosity", R::Intensive},
     {"capillary_potential", R::Intensive}, {"pore_pressure", R::Intensive},
     {"pore_velocity", R::Intensive},  {"density_offset", R::Intensive},
+    {"level", R::Level},
 }};
 
 [[noreturn]] void bad_rule(std::string_view name) {
@@ -52,7 +53,8 @@ void split_value(std::string_view name, const T& parent, T& c1, T& c2, const Vec
   if (rule == R::Identity) return;
   if (rule == R::Copy || rule == R::Intensive) { c1 = c2 = parent; return; }
   if constexpr (std::is_integral_v<T>) {
-    bad_rule(name);
+    if (rule != R::Level) bad_rule(name);
+    c1 = c2 = static_cast<T>(parent - 1);
   } else if (rule == R::Extensive) {
     c1 = c2 = 0.5 * parent;
   } else if constexpr (std::is_same_v<T, Vec<D>>) {
@@ -71,7 +73,8 @@ void merge_value(std::string_view name, const T& a, const T& b, double ma, doubl
   if (rule == R::Identity) return;
   if (rule == R::Copy) { out = a; return; }
   if constexpr (std::is_integral_v<T>) {
-    bad_rule(name);
+    if (rule != R::Level) bad_rule(name);
+    out = static_cast<T>(a + 1);  // merge_pair checked a == b
   } else if (rule == R::Extensive) {
     out = a + b;
   } else if (rule == R::Intensive || rule == R::Position) {
@@ -119,14 +122,13 @@ void check_params(const AdaptiveParams& p) {
 }
 
 template <int D>
-int level_of(double mass, double rest_density, const AdaptiveParams& params) {
-  return static_cast<int>(std::lround(std::log2(mass / rest_density / params.finest_volume)));
+double size_of_level(int level, const AdaptiveParams& params) {
+  return particle_size<D>(std::ldexp(params.finest_volume, level));
 }
 
 template <int D>
-Decision decide(double elfs, double mass, double rest_density, const AdaptiveParams& params) {
-  const double r = particle_size<D>(mass / rest_density);
-  const int level = level_of<D>(mass, rest_density, params);
+Decision decide(double elfs, int level, const AdaptiveParams& params) {
+  const double r = size_of_level<D>(level, params);
   if (elfs < params.alpha * r && level > params.min_level) return Decision::Split;
   if (elfs > params.beta * r && level < params.max_level) return Decision::Merge;
   return Decision::Keep;
@@ -149,6 +151,7 @@ Vec<D> split_direction(const Vec<D>& x, double delta, std::span<const Vec<D>> ot
 template <int D>
 std::size_t split_particle(const ParticleSet<D>& from, std::size_t i, const Vec<D>& e,
                            double delta, ParticleSet<D>& to) {
+  if (from.level[i] == 0) throw std::invalid_argument("adaptive: a particle of level 0 cannot be split");
   const std::size_t a = to.append();
   const std::size_t b = to.append();
   const Vec<D> offset = delta * e;
@@ -162,6 +165,8 @@ template <int D>
 double merge_pair(const ParticleSet<D>& from, std::size_t i, std::size_t j, ParticleSet<D>& to) {
   if (from.phase[i] != from.phase[j])
     throw std::invalid_argument("adaptive: cannot merge particles of different phases");
+  if (from.level[i] != from.level[j])
+    throw std::invalid_argument("adaptive: cannot merge particles of different levels");
   const double mi = from.m[i], mj = from.m[j];
   const std::size_t k = to.append();
   for_each_field_pair<D>(from, to, [&](std::string_view name, auto& dst, const auto& src) {
@@ -173,8 +178,8 @@ double merge_pair(const ParticleSet<D>& from, std::size_t i, std::size_t j, Part
 
 #define SC_ADAPTIVE_INSTANTIATE(D)                                                              \
   template void check_params<D>(const AdaptiveParams&);                                         \
-  template int level_of<D>(double, double, const AdaptiveParams&);                              \
-  template Decision decide<D>(double, double, double, const AdaptiveParams&);                   \
+  template double size_of_level<D>(int, const AdaptiveParams&);                                 \
+  template Decision decide<D>(double, int, const AdaptiveParams&);                              \
   template Vec<D> split_direction<D>(const Vec<D>&, double, std::span<const Vec<D>>);          \
   template std::size_t split_particle<D>(const ParticleSet<D>&, std::size_t, const Vec<D>&,     \
                                          double, ParticleSet<D>&);                              \

@@ -10,11 +10,14 @@
 //   Position   split: x +- delta e;      merge: mass-weighted     (centre of mass exact)
 //   Size       split: h / 2^(1/D);       merge: (h1^D + h2^D)^(1/D)  (h^D ~ m / rho0)
 //   Copy       split: copied;            merge: taken from the first particle (flags, phase)
+//   Level      split: level - 1;         merge: level + 1         (both partners share a level)
 //   Identity   split and merge: a fresh id from ParticleSet::append
 //
-// Particle size: r_i = (m_i / rho0_i)^(1/D) (the sampling spacing of the particle); its level is
-// round(log2(r_i^D / finest_volume)), so the mass doubles per level. ParticleSet has no level
-// field: the level is derived from the volume m / rho0.
+// Particle size: a particle of level L stands for the rest volume 2^L finest_volume, so its size
+// (sampling spacing) is r = (2^L finest_volume)^(1/D) and the mass of a full particle doubles per
+// level. The level is kept in ParticleSet::level, not read from m / rho0: porous flow lowers the
+// mass of a water particle it drains and rewrites its rest density, which says nothing of the
+// sampling the particle belongs to.
 #pragma once
 #include <cstdint>
 #include <span>
@@ -26,7 +29,7 @@
 
 namespace sc {
 
-enum class FieldRule { Extensive, Intensive, Position, Size, Copy, Identity };
+enum class FieldRule { Extensive, Intensive, Position, Size, Copy, Level, Identity };
 
 /// The split/merge rule of a ParticleSet field by its visit_fields name; throws std::logic_error
 /// for a field that has not been classified.
@@ -51,12 +54,13 @@ void check_params(const AdaptiveParams& params);
 
 enum class Decision { Keep, Split, Merge };
 
-/// Level of a particle of volume m / rho0 relative to params.finest_volume.
+/// Size r = (2^level finest_volume)^(1/D) of a particle of the given level [m].
 template <int D>
-int level_of(double mass, double rest_density, const AdaptiveParams& params);
-/// Split if elfs < alpha r and level > min_level; merge if elfs > beta r and level < max_level.
+double size_of_level(int level, const AdaptiveParams& params);
+/// Split if elfs < alpha r and level > min_level; merge if elfs > beta r and level < max_level,
+/// with r the size of the level.
 template <int D>
-Decision decide(double elfs, double mass, double rest_density, const AdaptiveParams& params);
+Decision decide(double elfs, int level, const AdaptiveParams& params);
 
 /// Among a fixed set of candidate axes (8 in 2-D, the 13 lattice directions in 3-D), the unit e
 /// that maximises the smallest distance from x +- delta e to the given points; ties keep the first
@@ -66,13 +70,14 @@ Vec<D> split_direction(const Vec<D>& x, double delta,
                        std::span<const Vec<D>> others);
 
 /// Appends the two children of particle i of `from` to `to` (usually from.additions()): x +- delta
-/// e, every other field by its rule. Returns the index of the first child in `to`.
+/// e, every other field by its rule. Throws std::invalid_argument for a particle of level 0.
+/// Returns the index of the first child in `to`.
 template <int D>
 std::size_t split_particle(const ParticleSet<D>& from, std::size_t i, const Vec<D>& e,
                            double delta, ParticleSet<D>& to);
 
 /// Appends the merge of particles i and j of `from` to `to`. Throws std::invalid_argument if their
-/// phases differ. Returns the kinetic energy removed, mu_r |v_i - v_j|^2 / 2 [J].
+/// phases or levels differ. Returns the kinetic energy removed, mu_r |v_i - v_j|^2 / 2 [J].
 template <int D>
 double merge_pair(const ParticleSet<D>& from, std::size_t i, std::size_t j, ParticleSet<D>& to);
 
@@ -105,9 +110,8 @@ template <int D>
 bool mergeable(const ParticleSet<D>& ps, std::size_t i, std::size_t j,
                const AdaptiveParams& params) {
   if (ps.phase[i] != ps.phase[j]) return false;
-  if (level_of<D>(ps.m[i], ps.rho0[i], params) != level_of<D>(ps.m[j], ps.rho0[j], params))
-    return false;
-  const double reach = params.merge_distance * particle_size<D>(ps.m[i] / ps.rho0[i]);
+  if (ps.level[i] != ps.level[j]) return false;
+  const double reach = params.merge_distance * size_of_level<D>(ps.level[i], params);
   return (ps.x[i] - ps.x[j]).norm() < reach;
 }
 
@@ -117,7 +121,7 @@ void queue_split(ParticleSet<D>& ps, std::size_t i, const AdaptiveParams& params
   typename ParticleSet<D>::VecArray others;
   for (auto j : neighbours(i))
     if (static_cast<std::size_t>(j) != i) others.push_back(ps.x[static_cast<std::size_t>(j)]);
-  const double delta = params.split_offset * particle_size<D>(0.5 * ps.m[i] / ps.rho0[i]);
+  const double delta = params.split_offset * size_of_level<D>(ps.level[i] - 1, params);
   const Vec<D> e = split_direction<D>(ps.x[i], delta, std::span<const Vec<D>>(others));
   split_particle<D>(ps, i, e, delta, ps.additions());
   ps.queue_remove(i);
@@ -157,7 +161,7 @@ AdaptStats adapt_pass(ParticleSet<D>& ps, const std::vector<double>& elfs,
   std::vector<std::size_t> merge_candidates;
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (!ps.moves(i)) continue;
-    const Decision d = decide<D>(elfs[i], ps.m[i], ps.rho0[i], params);
+    const Decision d = decide<D>(elfs[i], ps.level[i], params);
     if (d == Decision::Merge) merge_candidates.push_back(i);
     if (d != Decision::Split) continue;
     detail::queue_split<D>(ps, i, params, neighbours);

@@ -19,7 +19,7 @@ namespace sc {
 
 /// The size of a particle of volume `volume` [m]: the edge V^(1/D) of the cube (square in 2-D) it
 /// fills in a lattice. The one name for a size derived from a volume: adaptive sampling's split and
-/// merge decisions and levels (rest volume m/ρ0) and porous flow's transfer length (volume m/ρ).
+/// merge decisions (the rest volume of a particle's level) and porous flow's transfer length (volume m/ρ).
 template <int D>
 double particle_size(double volume) {
   return std::pow(volume, 1.0 / D);
@@ -44,6 +44,10 @@ class ParticleSet {
   std::vector<std::uint8_t> rough;   ///< boundary particles: 1 = no-slip (rough) wall, 0 = slip
   std::vector<std::int64_t> id;      ///< stable identity, never reused within a run
   std::vector<double> density_offset;  ///< adaptive runs: decaying density blend [kg/m^3] (adaptive/density_blend.hpp)
+  /// Adaptive sampling level: 0 as the scene samples the particle, +1 per merge, −1 per split, so a
+  /// full particle of level L has 2^L times the mass of a level-0 one (adaptive/split_merge.hpp).
+  /// Kept, not derived from m/ρ0: porous flow changes both of a water particle it drains or fills.
+  std::vector<std::uint8_t> level;
   // --- sand (solver/sand/) ----------------------------------------------------------------
   std::vector<std::uint8_t> rigid;   ///< sand: 1 = does not yield (eq 10), 0 = flowing
   std::vector<std::int32_t> cluster; ///< sand: rigid cluster number + 1 of this step, 0 = none
@@ -62,6 +66,7 @@ class ParticleSet {
     f("position", x); f("velocity", v); f("force", force);
     f("mass", m); f("support_radius", h); f("density", rho); f("rest_density", rho0);
     f("pressure", p); f("phase", phase); f("rough", rough); f("id", id); f("density_offset", density_offset);
+    f("level", level);
     f("rigid", rigid); f("cluster", cluster); f("strain_rate", strain_rate);
     f("absorbed_water", absorbed); f("emit_store", emit_store); f("saturation", saturation);
     f("porosity", porosity); f("capillary_potential", capillary); f("pore_pressure", pore_pressure);

@@ -6,6 +6,7 @@
 #include "porous/capillary.hpp"
 #include "porous/darcy.hpp"
 #include "porous/diffusion.hpp"
+#include "porous/partial_water_pressure.hpp"
 #include "porous/pore_pressure.hpp"
 #include "porous/rigid_pore_pressure.hpp"
 #include "porous/saturation.hpp"
@@ -112,12 +113,12 @@ void fill_slot(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, doubl
   if (!w.porous[i]) {
     w.pc[i] = 0.0;  // water in contact counts as saturated
     w.pp[i] = 0.0;
+    const double full = full_mass_at_level(ps, i, p.water_mass);
     s.mass = ps.m[i];
-    s.capacity = p.water_mass;
-    s.flow_factor = 1.0;
-    s.volume = p.water_mass / rho_f;
+    s.capacity = full;
+    s.volume = full / rho_f;
     s.contact_speed = p.spacing / dt;
-    s.flow_factor = ps.m[i] > 0.0 ? p.water_mass / ps.m[i] : 0.0;  // gives as a full particle
+    s.flow_factor = ps.m[i] > 0.0 ? full / ps.m[i] : 0.0;  // gives as a full particle
     if (p.diffusion == PorousDiffusion::LenaertsLiteral) s.flow_factor = 1.0;  // Lenaerts' case B: S = 1, S^β = 1
     return;
   }
@@ -386,18 +387,16 @@ void diffuse_literal(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double dt, 
   }
 }
 
-/// Rest density of a water particle whose own mass m differs from a full particle's m0 (ours [I]):
-/// ρ0_i = ρ^f − (m0 − m_i) W(0, h_i). In the density sum of eq 6 the self term m_i W(0, h) is most
-/// of ρ (about 80 % with the spiky kernel at h = 2 dx), so without this a half-absorbed particle
-/// sits deep in tension, has zero pressure and lets the pond sink into the porous bed; with it the
-/// particle is at rest where a full one would be.
+/// Rest density of every water particle taking part in the exchange, whose mass may differ from
+/// that of a full particle at its level (partial_water_rest_density).
 template <int D>
 void rest_density_of_water(ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w) {
-  const double self = kernel::density_kernel<D>(p.density_kernel, 0.0, p.water_support);
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i)
-    if (w.part[i] && !w.porous[i]) ps.rho0[i] = p.fluid_density - (p.water_mass - ps.m[i]) * self;
+    if (w.part[i] && !w.porous[i])
+      ps.rho0[i] = partial_water_rest_density(p.fluid_density, full_mass_at_level(ps, i, p.water_mass), ps.m[i],
+                                              kernel::density_kernel<D>(p.density_kernel, 0.0, ps.h[i]));
 }
 
 /// Deletes water particles that are (nearly) empty, giving their rest to the porous neighbour
@@ -406,7 +405,7 @@ template <int D>
 std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const PorousWork<D>& w) {
   std::size_t count = 0;
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (!w.part[i] || w.porous[i] || ps.m[i] >= p.min_water_fraction * p.water_mass) continue;
+    if (!w.part[i] || w.porous[i] || ps.m[i] >= p.min_water_fraction * full_mass_at_level(ps, i, p.water_mass)) continue;
     std::size_t best = i;
     double best_room = -1.0;
     for (const auto j : nb.of(i)) {
@@ -451,7 +450,8 @@ std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const PorousWork
     add.v[k] = ps.v[i];
     add.m[k] = std::min(ps.emit_store[i], p.water_mass);
     add.h[k] = p.water_support;
-    add.rho0[k] = p.fluid_density - (p.water_mass - add.m[k]) * kernel::density_kernel<D>(p.density_kernel, 0.0, p.water_support);
+    add.rho0[k] = partial_water_rest_density(p.fluid_density, p.water_mass, add.m[k],
+                                             kernel::density_kernel<D>(p.density_kernel, 0.0, p.water_support));
     add.rho[k] = add.rho0[k];
     ps.emit_store[i] -= add.m[k];
     placed.push_back(w.target[i]);
