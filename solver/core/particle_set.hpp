@@ -19,7 +19,7 @@ namespace sc {
 
 /// The size of a particle of volume `volume` [m]: the edge V^(1/D) of the cube (square in 2-D) it
 /// fills in a lattice. The one name for a size derived from a volume: adaptive sampling's split and
-/// merge decisions (the rest volume of a particle's level) and porous flow's transfer length (volume m/ρ).
+/// merge decisions (the rest volume of a particle's level) and porous flow's spacing (porous_spacing).
 template <int D>
 double particle_size(double volume) {
   return std::pow(volume, 1.0 / D);

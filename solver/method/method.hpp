@@ -37,6 +37,7 @@ struct ParticleView {
   std::span<const double> held_water;     ///< water in a porous particle's pores, besides m [kg] (optional)
   std::span<const double> leaving_water;  ///< water that has left the pores and is about to become free water [kg] (optional)
   std::span<const double> saturation;     ///< water fraction of a porous particle's pores, in [0, 1] (optional)
+  std::span<const double> pore_volume;    ///< volume of a porous particle's pores, 0 elsewhere [m^D] (optional)
   std::span<const double> pore_water_pressure;  ///< pressure of the water in the pores [Pa] (optional)
 
   std::size_t size() const { return x.size(); }

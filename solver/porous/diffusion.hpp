@@ -32,7 +32,8 @@ struct ExchangeSlot {
 /// Errata: eq 29 writes v_pi where Lenaerts (eq 9) has v_pj, the source particle's pore velocity;
 /// eq 28 (as Lenaerts' eq 8) has no outflow term (not conservative) and lacks a length
 /// (kg/(m s), not kg/s), which L_ij supplies. λ is calibrated (flux_length_factor) so that a
-/// uniform pore velocity on a lattice carries exactly the Darcy mass flux ρ^f φ S^{β+1} v_p.
+/// uniform pore velocity on a lattice carries the water of each site at v_p: the Darcy flux
+/// φ S^{β+1} v_p as a water volume (a full water particle per site).
 /// Water in contact (src.contact_speed > 0, ours [I]): free water touching a porous body is the
 /// pond at the body's surface, which keeps the surface saturated (the boundary condition of
 /// ponded infiltration and of a permeameter's inflow face). It gives at contact_speed (one
@@ -69,12 +70,15 @@ inline double literal_rate(const ExchangeSlot<D>& i, const ExchangeSlot<D>& j) {
   return dij * j.volume * j.mass * kernel::viscosity_laplacian<D>(r, j.h);
 }
 
-/// λ such that L = λ h makes the pair flow of a lattice of spacing dx (support h, V = dx^D) with a
-/// uniform pore velocity v carry the mass flux c v through any lattice plane (c = m_p / V):
+/// λ such that L = λ h makes the pair flow of a lattice of spacing dx (support h, every particle of
+/// volume V, the porous_volume of its sites) with a uniform pore velocity v carry the water of each
+/// site through any lattice plane at v, the mass flux m_p v / dx^D (m_p per site; test
+/// porous/diffusion_carries_the_darcy_flux_on_a_lattice):
 ///   λ = 1 / (h V Σ_{k: k·e > 0} (k·e)²/|k| ∇²W_visc(|k|, h)) = 2D / (h V Σ_{k ≠ 0} |k| ∇²W_visc(|k|, h)).
-/// In the continuum limit λ = 3/5 (2-D) and 2/3 (3-D).
+/// V is the receivers' volume in the pair flows, so it must be the volume porous flow gives its
+/// particles (lattice_volume): calibrated on another volume V', the flux would be V/V' of Darcy's.
 template <int D>
-double flux_length_factor(double dx, double h) {
+double flux_length_factor(double dx, double h, double volume) {
   const int reach = static_cast<int>(std::ceil(h / dx)) + 1;
   double sum = 0.0;
   std::array<int, D> k;
@@ -88,7 +92,7 @@ double flux_length_factor(double dx, double h) {
     while (a < D && ++k[a] > reach) k[a++] = -reach;
     if (a == D) break;
   }
-  return 2.0 * D / (h * std::pow(dx, D) * sum);
+  return 2.0 * D / (h * volume * sum);
 }
 
 /// Scale factors of the limiters of 28′, the free- and occupied-volume checks the thesis states

@@ -8,6 +8,7 @@
 #include "porous/diffusion.hpp"
 #include "porous/partial_water_pressure.hpp"
 #include "porous/pore_pressure.hpp"
+#include "porous/porous_volume.hpp"
 #include "porous/rigid_pore_pressure.hpp"
 #include "porous/saturation.hpp"
 
@@ -21,11 +22,6 @@ constexpr double kSaturated = 0.99;    // a fixed porous particle with S at leas
 
 template <int D>
 bool porous_at(const ParticleSet<D>& ps, std::size_t i) { return is_porous_phase(ps.phase_of(i), ps.porosity[i]); }
-
-template <int D>
-double spacing_of(const ParticleSet<D>& ps, std::size_t i, const PorousParams& p) {
-  return ps.phase_of(i) == Phase::Boundary ? p.spacing : particle_size<D>(ps.volume(i));
-}
 
 /// Which particles are porous (porous_at), from the porosity at the start of the step (fill_slot
 /// updates it for moving sand).
@@ -45,7 +41,7 @@ void mark_participant(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, cons
                       std::size_t i) {
   const auto list = nb.of(i);
   bool near = false, touches = false;
-  w.spacing[i] = w.porous[i] ? spacing_of(ps, i, p) : 0.0;
+  w.spacing[i] = w.porous[i] ? porous_spacing(ps, i, p) : 0.0;
   if (ps.phase_of(i) == Phase::Water) {
     near = std::any_of(list.begin(), list.end(), [&](std::uint32_t j) { return w.porous[j] != 0; });
   } else if (w.porous[i]) {
@@ -123,7 +119,7 @@ void fill_slot(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, doubl
     return;
   }
   const bool fixed = ps.phase_of(i) == Phase::Boundary;
-  const double V = fixed ? std::pow(p.spacing, D) : ps.volume(i);
+  const double V = porous_volume(ps, i);
   ps.porosity[i] = fixed ? p.porosity : porosity(p.porosity, ps.rho0[i], ps.rho[i]);
   if (!fixed) squeeze_out(ps, i, rho_f * ps.porosity[i] * V);
   const double S = saturation(ps.absorbed[i], rho_f, ps.porosity[i], V);
@@ -346,7 +342,7 @@ template <int D>
 double suction_after_step(const ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w, std::size_t i) {
   if (!w.porous[i]) return 0.0;
   if (ps.phase_of(i) != Phase::Boundary || w.contact[i]) return ps.capillary[i];
-  const double S = saturation(ps.absorbed[i], p.fluid_density, p.porosity, std::pow(p.spacing, D));
+  const double S = saturation(ps.absorbed[i], p.fluid_density, p.porosity, porous_volume(ps, i));
   return capillary_potential(S, p.capillary_constant, p.capillary_exponent);
 }
 

@@ -51,7 +51,7 @@ struct PorousWork {
   std::vector<double> pc, pp, ghost, in, a, b, relaxed;
   std::vector<double> passed;   // water a particle passed on in the step (Δt × limited outflow) [kg]
   std::vector<double> suction;  // P^c of the pore-pressure solve (suction_after_step)
-  std::vector<double> spacing;  // spacing_of porous particles (their volume does not change in a step)
+  std::vector<double> spacing;  // porous_spacing of porous particles (their volume does not change in a step)
   std::vector<double> to, from;  // Φ_{i→j}, Φ_{j→i} per neighbour-list entry
   std::vector<PressureRole> role;
   typename ParticleSet<D>::VecArray target;

@@ -1,8 +1,7 @@
 #include "porous/porous_setup.hpp"
 
-#include <cmath>
-
 #include "porous/diffusion.hpp"
+#include "porous/porous_volume.hpp"
 
 namespace sc {
 
@@ -38,23 +37,22 @@ void derive_porous(PorousParams& p, double dx, double h, double water_mass, kern
   p.spacing = dx;
   p.water_mass = water_mass;
   p.water_support = h;
-  p.flux_length_factor = flux_length_factor<D>(dx, h);
+  p.flux_length_factor = flux_length_factor<D>(dx, h, lattice_volume(p));
 }
 
 template <int D>
-void init_porous(ParticleSet<D>& ps, const PorousParams& p, double dx) {
+void init_porous(ParticleSet<D>& ps, const PorousParams& p) {
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.phase_of(i) == Phase::Water) continue;
-    const double V = ps.phase_of(i) == Phase::Boundary ? std::pow(dx, D) : ps.m[i] / ps.rho0[i];
     ps.porosity[i] = p.porosity;
     ps.saturation[i] = p.initial_saturation;
-    ps.absorbed[i] = p.initial_saturation * p.fluid_density * p.porosity * V;
+    ps.absorbed[i] = p.initial_saturation * p.fluid_density * p.porosity * porous_volume(ps, i);
   }
 }
 
 template void derive_porous<2>(PorousParams&, double, double, double, kernel::DensityKernel);
 template void derive_porous<3>(PorousParams&, double, double, double, kernel::DensityKernel);
-template void init_porous<2>(ParticleSet<2>&, const PorousParams&, double);
-template void init_porous<3>(ParticleSet<3>&, const PorousParams&, double);
+template void init_porous<2>(ParticleSet<2>&, const PorousParams&);
+template void init_porous<3>(ParticleSet<3>&, const PorousParams&);
 
 }  // namespace sc

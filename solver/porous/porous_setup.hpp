@@ -12,14 +12,15 @@ namespace sc {
 PorousParams read_porous(JsonObject o, double water_density);
 
 /// Fills the derived members of `p` for a case of dimension D at spacing dx with support h and
-/// full-size water particles of mass `water_mass`.
+/// full-size water particles of mass `water_mass`; λ is calibrated on the volume of the lattice's
+/// particles, lattice_volume (porous/porous_volume.hpp).
 template <int D>
 void derive_porous(PorousParams& p, double dx, double h, double water_mass,
                    kernel::DensityKernel density_kernel = kernel::DensityKernel::Spiky);
 
 /// Gives every particle that is not water (and exists now: call before adding tank walls) the
-/// porosity φ0 and absorbed water S0 ρ^f φ0 V, with V = dx^D for the fixed skeleton.
+/// porosity φ0 and absorbed water S0 ρ^f φ0 V, V its porous_volume (fixed or moving alike).
 template <int D>
-void init_porous(ParticleSet<D>& ps, const PorousParams& p, double dx);
+void init_porous(ParticleSet<D>& ps, const PorousParams& p);
 
 }  // namespace sc

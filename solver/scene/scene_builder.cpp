@@ -99,7 +99,7 @@ ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
       for (const Vec<3>& p : mesh_particles(spec, m, dx))
         add_particle(ps, p, m.phase, sand ? sand_mass : mass, h, sand ? sand_rho0 : rho0, false);
     }
-  if (spec.porous) init_porous(ps, *spec.porous, dx);
+  if (spec.porous) init_porous(ps, *spec.porous);
   if (spec.tank) add_tank(ps, *spec.tank, dx, res.wall_layers, h, mass, rho0);
   return ps;
 }

@@ -1,6 +1,7 @@
 #include "simulator/sph_method.hpp"
 
 #include "io/vtu_writer.hpp"
+#include "porous/porous_volume.hpp"
 #include "scene/scene_builder.hpp"
 
 namespace sc {
@@ -29,6 +30,10 @@ ParticleView<D> SphMethod<D>::particles() const {
   pore_water_pressure_.resize(ps.size());
   for (std::size_t i = 0; i < ps.size(); ++i) pore_water_pressure_[i] = ps.pore_pressure[i] - ps.capillary[i];
   view.pore_water_pressure = pore_water_pressure_;
+  pore_volume_.resize(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    pore_volume_[i] = ps.porosity[i] > 0.0 ? ps.porosity[i] * porous_volume(ps, i) : 0.0;
+  view.pore_volume = pore_volume_;
   return view;
 }
 

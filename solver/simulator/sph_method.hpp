@@ -41,6 +41,7 @@ class SphMethod final : public Method<D> {
   std::string parameters_hash_;
   double spacing_;
   mutable std::vector<double> pore_water_pressure_;  // P^p − P^c of the last particles() call
+  mutable std::vector<double> pore_volume_;          // φ V (porous_volume) of the last particles() call
 };
 
 /// SPH at t = 0: the case's scene at spacing dx. Throws InputError when an initial particle lies

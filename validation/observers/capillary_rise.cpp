@@ -43,7 +43,7 @@ class CapillaryRiseObserver : public Observer<D> {
     kc_ = p.capillary_constant;
     alpha_ = p.capillary_exponent;
     phi_ = p.porosity;
-    balance_ = WaterBalanceProbe<D>(p.fluid_density, dx_);
+    balance_ = WaterBalanceProbe<D>(p.fluid_density);
     rows_ = static_cast<std::size_t>(std::lround((top_ - bottom_) / dx_));
     s_sum_.assign(rows_, 0.0);
   }

@@ -42,7 +42,7 @@ class ColumnCollapseObserver : public Observer<D> {
     time_.push_back(run.time());
     energy_.push_back(e);
     if (fluid_density_ && (water_.has_value() || total_water(ps) > 0.0)) {
-      if (!water_) water_.emplace(*fluid_density_, dx_);
+      if (!water_) water_.emplace(*fluid_density_);
       water_->sample(run);
       water_total_.push_back(total_water(ps));
     }

@@ -5,10 +5,10 @@
 // flux q, compared with K_h (L + h_p)/L, K_h = k ρ^f g / μ, with h_p the pond depth averaged
 // over the same window. The pond drains slowly (the head changes by a few % per second) and the
 // pressure of a rigid skeleton follows it at once (solver/porous/rigid_pore_pressure.hpp), so
-// the mean head gives the mean flux. Pond depth: the water above the column as a height, each
-// full-size water particle one spacing^D of it (the pressure it exerts; its mass is the lattice
-// mass). The pore-water pressure P^p − P^c in the central band at the end is compared with the
-// linear profile from ρ g h_p at the top to 0 at the bottom (relative RMS over ρ g (L + h_p)).
+// the mean head gives the mean flux. Pond depth and outflow: water volumes as the lattice holds
+// them, each full-size water particle one spacing^D (lattice_water_volume; the pressure it
+// exerts, its mass being the lattice mass). The pore-water pressure P^p − P^c in the central band
+// at the end is compared with the linear profile from ρ g h_p at the top to 0 at the bottom (relative RMS over ρ g (L + h_p)).
 // Metrics: flux_rel_error, pressure_profile_error, water_balance_rel_error, saturation_violation;
 // informational: flux [m/s], ponding_depth [m] (window mean).
 // The pond depth counts water in full SPH water particles (the SPH probe): the observer needs SPH.
@@ -40,7 +40,7 @@ class DarcyColumnObserver : public Observer<D> {
     for (int d = 1; d < D - 1; ++d) width_ *= ctx.spec.tank->max[d] - ctx.spec.tank->min[d];
     band_lo_ = ctx.spec.tank->min[0] + 0.25 * (ctx.spec.tank->max[0] - ctx.spec.tank->min[0]);
     band_hi_ = ctx.spec.tank->max[0] - 0.25 * (ctx.spec.tank->max[0] - ctx.spec.tank->min[0]);
-    balance_ = WaterBalanceProbe<D>(p.fluid_density, dx_);
+    balance_ = WaterBalanceProbe<D>(p.fluid_density);
   }
 
   void sample(const Method<D>& run) override {
@@ -50,12 +50,12 @@ class DarcyColumnObserver : public Observer<D> {
     double out = 0.0, pond = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] < bottom_) out += ps.m[i];
-      if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] > top_) pond += ps.m[i] / water_mass;
+      if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] > top_) pond += ps.m[i];
       if (ps.porosity[i] > 0.0) out += ps.leaving_water[i];
     }
     time_.push_back(run.time());
-    outflow_.push_back(out / (rho_ * width_));
-    pond_.push_back(pond * std::pow(dx_, D) / width_);
+    outflow_.push_back(lattice_water_volume<D>(out, water_mass, dx_) / width_);
+    pond_.push_back(lattice_water_volume<D>(pond, water_mass, dx_) / width_);
   }
 
   ObserverResult finish(const Method<D>& run) override {

@@ -1,6 +1,6 @@
 // Observer "green_ampt": ponded infiltration into a dry fixed porous bed (docs/references.md §4).
-// F(t) is the absorbed water per unit area in the central band of the bed (m_p / ρ^f summed over
-// the band's columns, divided by the band width); the wetting front is the deepest row (band
+// F(t) is the absorbed water per unit area in the central band of the bed (its water volume as
+// the lattice holds it, lattice_water_volume, divided by the band width); the wetting front is the deepest row (band
 // mean) with S ≥ 1/2, measured down from the bed surface. Reference: Green-Ampt with
 // K_h = k ρ^f g / μ, Δθ = φ (1 − S0) and the suction head ψ = α H_c B(α, β + 2), H_c = k^c/(ρ^f g)
 // (reference/analytic/green_ampt.hpp), i.e. the capillary drive of the model's retention curve
@@ -9,7 +9,8 @@
 // the falling-head Green-Ampt law dF/dt = K (1 + (ψ + h(t)) Δθ / F), started with the
 // constant-head solution (GSL Lambert W, suction ψ + h(0)) over the first sample interval and
 // integrated with RK4 over the sampled h(t) (linear between samples). Pond depth: the water
-// above the bed surface as a height, a full-size water particle being one spacing^D of it.
+// above the bed surface as a height, a full-size water particle being one spacing^D of it
+// (lattice_water_volume, the measure of F too).
 // Metrics: infiltration_rel_error (largest |F − F_GA|/F_GA over samples with t ≥ 5 ψΔθ/K_h),
 // front_depth_rel_error (same window, informational), water_balance_rel_error,
 // saturation_violation; informational psi [m], K [m/s], t_gate_start [s]. Samples after the pond
@@ -38,7 +39,7 @@ class GreenAmptObserver : public Observer<D> {
     o.finish();
     const PorousParams& p = *ctx.spec.porous;
     rho_ = p.fluid_density;
-    balance_ = WaterBalanceProbe<D>(p.fluid_density, dx_);
+    balance_ = WaterBalanceProbe<D>(p.fluid_density);
     const double g = std::abs(ctx.spec.gravity[D - 1]);
     K_ = p.permeability * rho_ * g / p.fluid_viscosity;
     dtheta_ = p.porosity * (1.0 - p.initial_saturation);
@@ -59,7 +60,7 @@ class GreenAmptObserver : public Observer<D> {
     double water = 0.0, pond = 0.0;
     std::vector<double> S(ps.size(), 0.0);
     for (std::size_t i = 0; i < ps.size(); ++i) {
-      if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] > surface_) pond += ps.m[i] / water_mass;
+      if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] > surface_) pond += ps.m[i];
       if (!in_porous_band(ps, i, band_lo_, band_hi_)) continue;
       water += ps.water_held_by(i);
       S[i] = ps.saturation[i];
@@ -71,9 +72,9 @@ class GreenAmptObserver : public Observer<D> {
     for (std::size_t k = 0; k < rows; ++k)
       if (s_rows[k] >= 0.5) front = std::max(front, surface_ - (bottom_ + k * dx_));
     time_.push_back(run.time());
-    F_.push_back((water - initial_) / (rho_ * band_width()));
+    F_.push_back(lattice_water_volume<D>(water - initial_, water_mass, dx_) / band_width());
     front_.push_back(front);
-    pond_.push_back(pond * std::pow(dx_, D) / tank_width_);
+    pond_.push_back(lattice_water_volume<D>(pond, water_mass, dx_) / tank_width_);
   }
 
   ObserverResult finish(const Method<D>&) override {

@@ -13,14 +13,13 @@ namespace sc {
 
 /// Free water plus absorbed water, against its value at the first sample; and the saturation
 /// m_p/(ρ^f φ V) of every porous particle *before* eq 21's clamp, so that a limiter failure shows.
-/// Needs the view's density, porosity and held water.
+/// Needs the view's porosity, pore volume φ V and held water.
 template <int D>
 class WaterBalanceProbe {
  public:
   WaterBalanceProbe() = default;
-  /// ρ^f of the absorbed water (the case's porous section) and the run's particle spacing (the
-  /// volume of a fixed porous particle is spacing^D).
-  WaterBalanceProbe(double fluid_density, double spacing) : fluid_density_(fluid_density), spacing_(spacing) {}
+  /// ρ^f of the absorbed water (the case's porous section).
+  explicit WaterBalanceProbe(double fluid_density) : fluid_density_(fluid_density) {}
 
   void sample(const Method<D>& run) {
     const ParticleView<D> ps = run.particles();
@@ -29,8 +28,7 @@ class WaterBalanceProbe {
     error_ = std::max(error_, std::abs(total - initial_) / initial_);
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (!is_porous_phase(ps.phase_of(i), ps.porosity[i])) continue;
-      const double V = ps.phase_of(i) == Phase::Boundary ? std::pow(spacing_, D) : ps.m[i] / ps.density[i];
-      const double S = ps.held_water[i] / (fluid_density_ * ps.porosity[i] * V);
+      const double S = ps.held_water[i] / (fluid_density_ * ps.pore_volume[i]);
       s_min_ = std::min(s_min_, S);
       s_max_ = std::max(s_max_, S);
     }
@@ -40,10 +38,18 @@ class WaterBalanceProbe {
   double saturation_violation() const { return std::max({0.0, -s_min_ - 1e-12, s_max_ - 1.0 - 1e-12}); }
 
  private:
-  double fluid_density_ = 0.0, spacing_ = 0.0;
+  double fluid_density_ = 0.0;
   bool first_ = true;
   double initial_ = 0.0, error_ = 0.0, s_min_ = 0.0, s_max_ = 1.0;
 };
+
+/// Volume of a water mass as the lattice holds it [m^D]: a full water particle of the scene's
+/// sampling (mass `full_water_mass`) fills one site, dx^D, and the pores of a site hold water by the
+/// same measure (solver/porous/porous_volume.hpp). Pond depths, infiltrated and drained water.
+template <int D>
+double lattice_water_volume(double mass, double full_water_mass, double dx) {
+  return mass / full_water_mass * std::pow(dx, D);
+}
 
 /// Porous (fixed-skeleton) particles whose x lies in [lo, hi]: the central band of a column.
 template <int D>
