@@ -69,6 +69,7 @@ BOOST_AUTO_TEST_CASE(each_fault_names_its_json_path) {
       {"/tank/sides/y+", "lid", "/tank/sides/y+"},                   // not one of the choices
       {"/blocks/0/phase", "lava", "/blocks/0/phase"},                // unknown phase
       {"/blocks/0/max", json::array({2.0, 0.1}), "/blocks/0/max"},  // block outside the domain
+      {"/blocks/0/angular_velocity", json::array({1.0, 2.0}), "/blocks/0/angular_velocity"},  // 2-D: one number
   };
   for (const Fault& f : faults) {
     json j = valid_case();
@@ -103,6 +104,36 @@ BOOST_AUTO_TEST_CASE(particle_estimate_bounds_the_built_scene) {
       BOOST_TEST(estimate <= 1.01 * built);
     }
   }
+}
+
+// blocks[].angular_velocity: the block's particles start in the rigid spin v = ω × (x − x_cm) about
+// their centre of mass, so their momentum is zero and their angular momentum is I ω (2-D: I_zz =
+// Σ m |x − x_cm|²); the other blocks stay at rest.
+BOOST_AUTO_TEST_CASE(spinning_block_starts_in_rigid_rotation_about_its_centre) {
+  json j = valid_case();
+  j["blocks"].push_back({{"phase", "water"}, {"min", {0.2, 0.0}}, {"max", {0.33, 0.07}}, {"angular_velocity", {3.0}}});
+  const CaseSpec spec = load_case(write_temp(j));
+  const ParticleSet<2> ps = build_scene<2>(spec, 0.01);
+  Vec<2> P = Vec<2>::Zero(), centre = Vec<2>::Zero();
+  double M = 0.0, L = 0.0, I = 0.0, rest = 0.0;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.x[i].x() > 0.15 && ps.phase_of(i) == Phase::Water) {
+      M += ps.m[i];
+      centre += ps.m[i] * ps.x[i];
+    } else {
+      rest = std::max(rest, ps.v[i].norm());
+    }
+  centre /= M;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.x[i].x() > 0.15 && ps.phase_of(i) == Phase::Water) {
+      const Vec<2> r = ps.x[i] - centre;
+      P += ps.m[i] * ps.v[i];
+      L += ps.m[i] * (r.x() * ps.v[i].y() - r.y() * ps.v[i].x());
+      I += ps.m[i] * r.squaredNorm();
+    }
+  BOOST_TEST(P.norm() < 1e-14 * M);
+  BOOST_TEST(std::abs(L / (3.0 * I) - 1.0) < 1e-12);
+  BOOST_TEST(rest == 0.0);
 }
 
 BOOST_AUTO_TEST_CASE(particle_guard_names_the_case_spacing_and_flag) {

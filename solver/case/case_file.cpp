@@ -137,6 +137,10 @@ CaseSpec load_case(const json& doc, const std::string& path) {
     for (int d = 0; d < c.dimension; ++d)
       if (block.min[d] < c.domain_min[d] || block.max[d] > c.domain_max[d])
         b.fail("max", "block must lie inside the domain");
+    if (b.has("angular_velocity")) {
+      if (fill == "porous_bed") b.fail("angular_velocity", "a porous_bed block is a fixed skeleton: it cannot spin");
+      block.angular_velocity = b.numbers("angular_velocity", c.dimension == 3 ? 3 : 1);
+    }
     b.finish();
     c.blocks.push_back(block);
   }

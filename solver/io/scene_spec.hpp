@@ -17,6 +17,9 @@ enum class BlockFill { Water, Sand, PorousBed };
 struct BlockSpec {
   BlockFill fill = BlockFill::Water;
   std::vector<double> min, max;  ///< corners [m]
+  /// Initial rigid spin ω [rad/s] of the block about its centre of mass, v = ω × (x − x_cm): three
+  /// components in 3-D, one (about the normal of the plane) in 2-D; empty: the block starts at rest.
+  std::vector<double> angular_velocity;
   /// The phase of its particles: a porous bed is a fixed skeleton of boundary-phase particles.
   Phase phase() const {
     return fill == BlockFill::Sand ? Phase::Sand : (fill == BlockFill::Water ? Phase::Water : Phase::Boundary);

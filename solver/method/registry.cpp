@@ -22,8 +22,22 @@ struct Entry {
   void (*check)(const CaseSpec&);
 };
 
-void check_flip(const CaseSpec& spec) { read_flip_params(spec); }
-void check_dem(const CaseSpec& spec) { read_dem_params(spec); }
+/// Rejects a spinning block (blocks[].angular_velocity) for a method that starts its blocks at rest.
+void check_blocks_at_rest(const CaseSpec& spec, const std::string& method) {
+  for (std::size_t b = 0; b < spec.blocks.size(); ++b)
+    if (!spec.blocks[b].angular_velocity.empty())
+      throw InputError(spec.file, "/blocks/" + std::to_string(b) + "/angular_velocity",
+                       "method \"" + method + "\" starts every block at rest; only \"sph\" reads angular_velocity");
+}
+
+void check_flip(const CaseSpec& spec) {
+  read_flip_params(spec);
+  check_blocks_at_rest(spec, "flip");
+}
+void check_dem(const CaseSpec& spec) {
+  read_dem_params(spec);
+  check_blocks_at_rest(spec, "dem");
+}
 
 /// Every method of this build. A new method adds its line here (and its own folder under solver/).
 template <int D>

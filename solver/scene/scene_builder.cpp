@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "porous/porous_setup.hpp"
+#include "sand/rigid_body.hpp"
 #include "scene/mesh_fill.hpp"
 #include "sph/kernels.hpp"
 
@@ -80,6 +81,18 @@ void add_tank(ParticleSet<D>& ps, const TankSpec& tank, double dx, int layers, d
   }
 }
 
+/// Gives the particles [first, end) of a block the rigid spin ω about their centre of mass (all
+/// of a block's particles have the same mass): v = ω × (x − x_cm).
+template <int D>
+void spin_block(ParticleSet<D>& ps, std::size_t first, const std::vector<double>& angular_velocity) {
+  if (angular_velocity.empty()) return;
+  const AngVec<D> omega = Eigen::Map<const AngVec<D>>(angular_velocity.data());
+  Vec<D> centre = Vec<D>::Zero();
+  for (std::size_t i = first; i < ps.size(); ++i) centre += ps.x[i];
+  centre /= static_cast<double>(ps.size() - first);
+  for (std::size_t i = first; i < ps.size(); ++i) ps.v[i] = spin_velocity<D>(omega, ps.x[i] - centre);
+}
+
 }  // namespace
 
 template <int D>
@@ -90,8 +103,10 @@ ParticleSet<D> build_scene(const CaseSpec& spec, double dx) {
   const double rho0 = spec.water.rest_density, sand_rho0 = spec.sand.rest_density;
   for (const BlockSpec& block : spec.blocks) {
     const bool sand = block.fill == BlockFill::Sand;
+    const std::size_t first = ps.size();
     for (const Vec<D>& p : lattice_points<D>(to_vec<D>(block.min), to_vec<D>(block.max), dx))
       add_particle(ps, p, block.phase(), sand ? sand_mass : mass, h, sand ? sand_rho0 : rho0, false);
+    spin_block<D>(ps, first, block.angular_velocity);
   }
   if constexpr (D == 3)
     for (const MeshSpec& m : spec.meshes) {

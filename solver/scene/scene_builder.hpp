@@ -49,7 +49,8 @@ inline constexpr double kDefaultMaxParticles = 3e7;
 /// anything is allocated.
 void check_particle_count(const CaseSpec& spec, double dx, double limit, const std::string& json_path);
 
-/// The particles of `spec` at spacing dx: its blocks (in file order) then its tank walls.
+/// The particles of `spec` at spacing dx: its blocks (in file order; at rest, or spinning rigidly at
+/// their angular_velocity about their centre of mass) then its tank walls.
 template <int D>
 ParticleSet<D> build_scene(const CaseSpec& spec, double dx);
 
