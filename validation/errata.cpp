@@ -70,7 +70,7 @@ const std::vector<Erratum>& errata_table() {
       {"12a", "rigid stress with the support h for the spacing", {{"sand", {{"rigid_stress_length", "support"}}}},
        {"column_collapse", "angle_of_repose"}},
       {"17", "inertia with I_yy = Σ m (y² + z²): wrong moment about y", {{"sand", {{"inertia_tensor", "printed"}}}},
-       {"sand_water_adaptive_3d", "column_collapse_3d"}},
+       {"sand_water_adaptive_3d", "column_collapse_3d", "rigid_spin_3d"}},
       {"22", "plain gradient Σ V_j A_j ∇W: spurious edge gradient", {{"porous", {{"gradient", "lenaerts"}}}},
        {"green_ampt", "darcy_column", "capillary_rise"}},
       {"25", "inverted density ratio: squeezed sand sucks water in", {{"porous", {{"thesis_pore_pressure_ratio", true}}}},

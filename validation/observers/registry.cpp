@@ -8,6 +8,7 @@ template <int D> std::unique_ptr<Observer<D>> make_dam_break_observer(const Obse
 template <int D> std::unique_ptr<Observer<D>> make_scene_observer(const ObserverContext&);
 template <int D> std::unique_ptr<Observer<D>> make_column_collapse_observer(const ObserverContext&);
 template <int D> std::unique_ptr<Observer<D>> make_rigid_cluster_observer(const ObserverContext&);
+template <int D> std::unique_ptr<Observer<D>> make_rigid_spin_observer(const ObserverContext&);
 template <int D> std::unique_ptr<Observer<D>> make_angle_of_repose_observer(const ObserverContext&);
 template <int D> std::unique_ptr<Observer<D>> make_darcy_column_observer(const ObserverContext&);
 template <int D> std::unique_ptr<Observer<D>> make_green_ampt_observer(const ObserverContext&);
@@ -25,11 +26,12 @@ JsonObject validation_block(const ObserverContext& ctx) {
 template <int D>
 std::unique_ptr<Observer<D>> make_observer(const ObserverContext& ctx) {
   JsonObject o(ctx.spec.validation, "/validation", ctx.spec.file);
-  const std::string name = o.one_of("observer", {"hydrostatic", "dam_break", "darcy_column", "column_collapse", "rigid_cluster", "angle_of_repose", "scene", "green_ampt", "capillary_rise"});
+  const std::string name = o.one_of("observer", {"hydrostatic", "dam_break", "darcy_column", "column_collapse", "rigid_cluster", "rigid_spin", "angle_of_repose", "scene", "green_ampt", "capillary_rise"});
   if (name == "hydrostatic") return make_hydrostatic_observer<D>(ctx);
   if (name == "scene") return make_scene_observer<D>(ctx);
   if (name == "column_collapse") return make_column_collapse_observer<D>(ctx);
   if (name == "rigid_cluster") return make_rigid_cluster_observer<D>(ctx);
+  if (name == "rigid_spin") return make_rigid_spin_observer<D>(ctx);
   if (name == "angle_of_repose") return make_angle_of_repose_observer<D>(ctx);
   if (name == "darcy_column") return make_darcy_column_observer<D>(ctx);
   if (name == "green_ampt") return make_green_ampt_observer<D>(ctx);
