@@ -403,6 +403,7 @@ ParticleSet<2> uniform_bed(PorousParams& p, Phase phase, double S0, NeighbourGri
   add_block(ps, p, phase, {0.0, 0.0}, {0.3, 0.2}, 0.0);
   p.initial_saturation = S0;
   init_porous(ps, p);
+  for (std::size_t i = 0; i < ps.size(); ++i) ps.rho[i] = ps.rho0[i];  // wet sand's held water is in m and ρ0
   nb.rebuild(ps);
   return ps;
 }
@@ -547,6 +548,132 @@ BOOST_AUTO_TEST_CASE(wet_rest_density_eq_31) {
   // [thesis eq. 31] dry gives ρ0; a saturated bulk gives ρ0 + φ ρ^f.
   BOOST_TEST(wet_rest_density(1600.0, 0.0, 0.4, 1000.0) == 1600.0);
   BOOST_TEST(wet_rest_density(1600.0, 1.0, 0.4, 1000.0) == 2000.0);
+}
+
+namespace {
+
+constexpr double kSandDensity = 1600.0;  // dry bulk rest density of the test sand [kg/m^3]
+
+/// Dry sand lattice in [lo, hi) (lattice mass of kSandDensity, support 2 kDx), its pores filled to
+/// S0 by init_porous as the scene builder does.
+ParticleSet<2> wet_sand(const PorousParams& p, Vec<2> lo, Vec<2> hi, double S0) {
+  ParticleSet<2> ps;
+  for (const auto& x : lattice_points<2>(lo, hi, kDx)) {
+    const std::size_t i = ps.append();
+    ps.x[i] = x;
+    ps.m[i] = lattice_mass<2>(kSandDensity, kDx, 2.0 * kDx, kernel::DensityKernel::Spiky);
+    ps.h[i] = p.water_support;
+    ps.rho[i] = ps.rho0[i] = kSandDensity;
+    ps.phase[i] = static_cast<std::uint8_t>(Phase::Sand);
+  }
+  PorousParams q = p;
+  q.initial_saturation = S0;
+  init_porous(ps, q);
+  return ps;
+}
+
+/// Σ m v over all particles and Σ m |v| (the scale of its round-off).
+std::pair<Vec<2>, double> momentum(const ParticleSet<2>& ps) {
+  Vec<2> P = Vec<2>::Zero();
+  double scale = 0.0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    P += ps.m[i] * ps.v[i];
+    scale += ps.m[i] * ps.v[i].norm();
+  }
+  return {P, scale};
+}
+
+SimulationParams sand_sim_params(const PorousParams& p) {
+  SimulationParams sp;
+  sp.dt_max = 2.5e-4;
+  sp.eos.sound_speed = 15.0;
+  sp.gravity = {0.0, -9.81};
+  sp.domain_min = {-1.0, -1.0};
+  sp.domain_max = {1.0, 1.0};
+  sp.porous = p;
+  return sp;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(a_saturated_grain_falls_with_the_weight_of_grain_and_water) {
+  // Thesis §3.4 ("the absorbed fluid mass should be taken into account to all computations"),
+  // Lenaerts 2008 ("particles gain weight"): a lone saturated sand grain (φ = 0.4, its pores
+  // holding m_p = φ ρ^f V, no flow: k = 0) falling for 40 steps is pulled by the weight of grain
+  // and water, (m_dry + m_p) g, so its momentum after t is (m_dry + m_p) g t (to 1e-12) and its
+  // mass is m_dry + m_p: 1.25 m_dry here.
+  PorousParams p = test_params();
+  p.permeability = 0.0;
+  ParticleSet<2> ps = wet_sand(p, {0.0, 0.0}, {kDx, kDx}, 1.0);
+  const double dry = lattice_mass<2>(kSandDensity, kDx, 2.0 * kDx, kernel::DensityKernel::Spiky);
+  const double water = p.fluid_density * p.porosity * dry / kSandDensity;
+  Simulator<2> sim(std::move(ps), sand_sim_params(p));
+  double t = 0.0;
+  for (int step = 0; step < 40; ++step) t += sim.step();
+  const auto& q = sim.particles();
+  BOOST_TEST_REQUIRE(q.size() == 1u);
+  BOOST_TEST(q.m[0] == dry + water, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(q.m[0] * q.v[0][1] == -(dry + water) * 9.81 * t, boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(absorption_and_emission_conserve_the_momentum_of_water_and_sand) {
+  // Moving porous sand (S = 0.95, drained downwards by gravity in Darcy's law, no suction) under
+  // a water blob, every particle with its own velocity; only porous_step acts (no forces), for
+  // 600 steps. Water the sand absorbs brings its momentum Δm v_water, water it emits (into new
+  // particles below, or into the blob) takes Δm v_sand, absorbed water passed between grains
+  // carries the giver's velocity: Σ m v over water and sand is constant to 1e-12 of Σ m |v|,
+  // while water particles are absorbed whole and new ones are emitted.
+  PorousParams p = test_params();
+  p.capillary_constant = 0.0;
+  ParticleSet<2> ps = wet_sand(p, {0.0, 0.10}, {0.1, 0.16}, 0.95);
+  add_block(ps, p, Phase::Water, {0.03, 0.16}, {0.07, 0.20}, 0.0);
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    ps.v[i] = ps.phase_of(i) == Phase::Water ? Vec<2>(-0.4, -0.8) : Vec<2>(0.2 + 3.0 * (ps.x[i][1] - 0.1), -0.1 + ps.x[i][0]);
+  const auto [P0, scale] = momentum(ps);
+  const Vec<2> g(0.0, -9.81);
+  NeighbourGrid<2> nb;
+  PorousWork<2> work;
+  PorousStepCounts total;
+  double worst = 0.0;
+  for (int step = 0; step < 600; ++step) {
+    nb.rebuild(ps);
+    compute_density(ps, nb, p.density_kernel, kRho);
+    const PorousStepCounts c = porous_step(ps, nb, p, g, 2.5e-4, work);
+    ps.compact();
+    total.absorbed += c.absorbed;
+    total.created += c.created;
+    worst = std::max(worst, (momentum(ps).first - P0).norm() / scale);
+  }
+  BOOST_TEST(total.absorbed > 0u);
+  BOOST_TEST(total.created > 0u);
+  BOOST_TEST(worst <= 1e-12);
+}
+
+BOOST_AUTO_TEST_CASE(a_resting_saturated_bed_has_the_wet_density_of_eq_31) {
+  // [thesis eq. 31]: a saturated sand bed (dry ρ0 = 1600, φ = 0.4, no flow) resting in a box
+  // for 400 steps: every grain's rest density is ρ0 + φ ρ^f = 2000 (to 1e-12) and the summation
+  // density (eq 6) of the grains away from the surface and the floor is within 1 % of it.
+  PorousParams p = test_params();
+  p.permeability = 0.0;
+  ParticleSet<2> ps = wet_sand(p, {0.0, 0.0}, {0.12, 0.08}, 1.0);
+  add_block(ps, p, Phase::Boundary, {-0.03, -0.03}, {0.15, 0.0}, 0.0);  // floor
+  add_block(ps, p, Phase::Boundary, {-0.03, 0.0}, {0.0, 0.1}, 0.0);     // side walls
+  add_block(ps, p, Phase::Boundary, {0.12, 0.0}, {0.15, 0.1}, 0.0);
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.phase_of(i) == Phase::Boundary) ps.porosity[i] = ps.absorbed[i] = 0.0;
+  Simulator<2> sim(std::move(ps), sand_sim_params(p));
+  for (int step = 0; step < 400; ++step) sim.step();
+  const auto& q = sim.particles();
+  const double wet = kSandDensity + p.porosity * p.fluid_density;
+  std::size_t inner = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    if (q.phase_of(i) != Phase::Sand) continue;
+    BOOST_TEST(q.rho0[i] == wet, boost::test_tools::tolerance(1e-12));
+    if (q.x[i][0] < 0.03 || q.x[i][0] > 0.09 || q.x[i][1] < 0.02 || q.x[i][1] > 0.05) continue;
+    BOOST_TEST(q.rho[i] == wet, boost::test_tools::tolerance(0.01));
+    ++inner;
+  }
+  BOOST_TEST(inner > 0u);
 }
 
 BOOST_AUTO_TEST_CASE(effective_pressure_eq_32_weakens_wet_sand) {

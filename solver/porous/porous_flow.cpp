@@ -11,6 +11,7 @@
 #include "porous/porous_volume.hpp"
 #include "porous/rigid_pore_pressure.hpp"
 #include "porous/saturation.hpp"
+#include "porous/wet_density.hpp"
 
 namespace sc {
 
@@ -120,6 +121,7 @@ void fill_slot(ParticleSet<D>& ps, const PorousParams& p, const Vec<D>& g, doubl
   }
   const bool fixed = ps.phase_of(i) == Phase::Boundary;
   const double V = porous_volume(ps, i);
+  if (carries_held_water(ps, i)) w.rest_volume[i] = V;
   ps.porosity[i] = fixed ? p.porosity : porosity(p.porosity, ps.rho0[i], ps.rho[i]);
   if (!fixed) squeeze_out(ps, i, rho_f * ps.porosity[i] * V);
   const double S = saturation(ps.absorbed[i], rho_f, ps.porosity[i], V);
@@ -263,6 +265,31 @@ bool exchanges(const PorousWork<D>& w, std::size_t i, std::size_t j) {
   return j != i && w.part[j] && (w.porous[i] || w.porous[j]);
 }
 
+/// Particle i, of mass m_i and velocity v_i, receives the mass dm moving at u: its momentum
+/// becomes m_i v_i + dm u, its velocity the mass-weighted mean (absorption of a whole water
+/// particle, absorb_small).
+template <int D>
+void receive(ParticleSet<D>& ps, std::size_t i, double dm, const Vec<D>& u) {
+  ps.v[i] = (ps.m[i] * ps.v[i] + dm * u) / (ps.m[i] + dm);
+  ps.m[i] += dm;
+}
+
+/// Momentum of the water exchanged in a step of diffusion (thesis §3.4: the absorbed water counts
+/// in all computations): water a particle gives leaves at its velocity, which keeps it; water it
+/// takes brings the giver's velocity, so a moving receiver i (mass m_i after the step, already
+/// updated) gets v_i += (Σ_j Δm_j v_j − Δm v_i)/m_i, Δm = w.taken, Σ_j Δm_j v_j = w.brought, and
+/// Σ m v of water and moving sand is unchanged (test
+/// porous/absorption_and_emission_conserve_the_momentum_of_water_and_sand). A fixed porous bed
+/// (velocity 0) neither moves nor counts: what it takes leaves the system with the support, what
+/// it gives arrives at rest. A particle that takes nothing keeps its velocity bitwise.
+template <int D>
+void take_momentum(ParticleSet<D>& ps, const PorousWork<D>& w) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i)
+    if (w.part[i] && ps.moves(i) && w.taken[i] > 0.0) ps.v[i] += (w.brought[i] - w.taken[i] * ps.v[i]) / ps.m[i];
+}
+
 /// Conserving diffusion (28′): raw flows (kept per neighbour-list entry), limiter scales,
 /// limited update (eq 30). A particle whose raw flows are all zero (w.flowing[i] = 0: dry sand
 /// with dry neighbours, most of a scene) skips its neighbours in the limiter passes: they would
@@ -315,23 +342,31 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
-    double out = w.ghost[i] * w.a[i], in = 0.0;
+    double out = w.ghost[i] * w.a[i], in = 0.0, sent = 0.0;
+    Vec<D> brought = Vec<D>::Zero();
     std::size_t k = nb.list_start(i);
     if (w.flowing[i])
       for (const auto j : nb.of(i)) {
-        out += to[k] * std::min(w.a[i], w.b[j]);
-        in += from[k] * std::min(w.a[j], w.b[i]);
+        const double give = to[k] * std::min(w.a[i], w.b[j]), take = from[k] * std::min(w.a[j], w.b[i]);
+        out += give;
+        in += take;
+        sent += give;
+        brought += take * ps.v[j];
         ++k;
       }
     const double m = euler_mass(w.slot[i].mass, in, out, dt);
     w.passed[i] = dt * out;
+    w.taken[i] = dt * in;
+    w.brought[i] = dt * brought;
     if (w.porous[i]) {
       ps.absorbed[i] = m;
       ps.emit_store[i] += dt * w.ghost[i] * w.a[i];
+      if (carries_held_water(ps, i)) ps.m[i] += dt * (in - sent);
     } else {
       ps.m[i] = m;
     }
   }
+  take_momentum(ps, w);
 }
 
 /// Capillary potential P^c [thesis eq. 23] that the next step's pore velocity will see at i: that of
@@ -379,24 +414,34 @@ void diffuse_literal(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double dt, 
     for (const auto j : nb.of(i))
       if (exchanges(w, i, j)) rate += literal_rate(w.slot[i], w.slot[j]);
     const double m = std::clamp(w.slot[i].mass + dt * rate, 0.0, w.slot[i].capacity);
+    if (carries_held_water(ps, i)) ps.m[i] += m - ps.absorbed[i];
     (w.porous[i] ? ps.absorbed[i] : ps.m[i]) = m;
   }
 }
 
-/// Rest density of every water particle taking part in the exchange, whose mass may differ from
-/// that of a full particle at its level (partial_water_rest_density).
+/// Rest densities after the exchange: every water particle taking part, whose mass may differ from
+/// that of a full particle at its level, gets partial_water_rest_density; moving porous sand, whose
+/// mass holds its water, the wet rest density of [thesis eq. 31] at its rest volume of the start
+/// of the step (set_wet_rest_density), and a density ρ scaled with it: the density sum counts
+/// sand neighbours at ρ0_i/ρ0_j (sph/density.hpp), so ρ_i follows ρ0_i, and the volume m/ρ and
+/// the compression ρ/ρ0 stay those the step used until the next density sum.
 template <int D>
-void rest_density_of_water(ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w) {
+void update_rest_densities(ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
-    if (w.part[i] && !w.porous[i])
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (carries_held_water(ps, i)) {
+      const double before = ps.rho0[i];
+      set_wet_rest_density(ps, i, w.rest_volume[i], p.porosity, p.fluid_density);
+      ps.rho[i] *= ps.rho0[i] / before;
+    } else if (w.part[i] && !w.porous[i])
       ps.rho0[i] = partial_water_rest_density(p.fluid_density, full_mass_at_level(ps, i, p.water_mass), ps.m[i],
                                               kernel::density_kernel<D>(p.density_kernel, 0.0, ps.h[i]));
+  }
 }
 
-/// Deletes water particles that are (nearly) empty, giving their rest to the porous neighbour
-/// with the most room (kept if none has room). Serial, index order.
+/// Deletes water particles that are (nearly) empty, giving their rest, with its momentum, to the
+/// porous neighbour with the most room (kept if none has room). Serial, index order.
 template <int D>
 std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const PorousWork<D>& w) {
   std::size_t count = 0;
@@ -410,6 +455,7 @@ std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const P
       if (room > best_room) { best = j; best_room = room; }
     }
     if (best == i || best_room < ps.m[i]) continue;
+    if (carries_held_water(ps, best)) receive(ps, best, ps.m[i], ps.v[i]);
     ps.absorbed[best] += ps.m[i];
     ps.m[i] = 0.0;
     ps.queue_remove(i);
@@ -450,6 +496,7 @@ std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const PorousWork
                                              kernel::density_kernel<D>(p.density_kernel, 0.0, p.water_support));
     add.rho[k] = add.rho0[k];
     ps.emit_store[i] -= add.m[k];
+    if (carries_held_water(ps, i)) ps.m[i] -= add.m[k];  // the new particle takes its share of i's momentum
     placed.push_back(w.target[i]);
     ++count;
   }
@@ -464,7 +511,10 @@ PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
   const std::size_t n = ps.size();
   w.slot.resize(n);
   for (auto* v : {&w.part, &w.porous, &w.exposed, &w.placeable, &w.seepage, &w.contact, &w.flowing}) v->resize(n);
-  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b, &w.relaxed, &w.spacing, &w.passed, &w.suction}) v->resize(n);
+  for (auto* v : {&w.pc, &w.pp, &w.ghost, &w.in, &w.a, &w.b, &w.relaxed, &w.spacing, &w.passed, &w.suction, &w.taken,
+                  &w.rest_volume})
+    v->resize(n);
+  w.brought.resize(n);
   w.target.resize(n);
   if (prepare_participants(ps, nb, params, gravity, dt, w)) set_contact_pressure(ps, nb, params, gravity, w);
   pore_velocities(ps, nb, params, gravity, w);
@@ -478,7 +528,7 @@ PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
     counts.created = emit_new(ps, params, w);
   }
   counts.absorbed = absorb_small(ps, nb, params, w);
-  rest_density_of_water(ps, params, w);
+  update_rest_densities(ps, params, w);
   return counts;
 }
 

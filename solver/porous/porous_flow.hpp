@@ -24,6 +24,15 @@
 // away from all particles, including those created earlier in the same step; the rest of a larger
 // store waits for the next free target). Stores flow back into m_p while not exposed.
 //
+// Held water weighs (thesis §3.4: the absorbed fluid mass is taken into account in all
+// computations; Lenaerts §4: particles gain weight): the mass m of moving porous sand is its dry
+// mass plus its held water m_p + store (porous/wet_density.hpp), so gravity, inertia, the density
+// sum and rigid clusters carry the water, and its rest density is that of [thesis eq. 31]. Every
+// exchange of water between particles carries momentum: water given leaves at the giver's velocity,
+// the receiver takes the mass-weighted mean, so Σ m v of water and moving sand is unchanged (test
+// porous/absorption_and_emission_conserve_the_momentum_of_water_and_sand). A fixed porous bed keeps
+// the mass of its wall model and velocity 0.
+//
 // Determinism: every loop over particles is a gather that writes only its own entries; pair
 // flows are computed identically by both particles; deletions and creations are queued serially
 // in index order.
@@ -52,9 +61,12 @@ struct PorousWork {
   std::vector<double> passed;   // water a particle passed on in the step (Δt × limited outflow) [kg]
   std::vector<double> suction;  // P^c of the pore-pressure solve (suction_after_step)
   std::vector<double> spacing;  // porous_spacing of porous particles (their volume does not change in a step)
+  std::vector<double> taken;    // water a particle took in the diffusion of the step [kg]
+  std::vector<double> rest_volume;  // m/ρ0 of moving porous sand at the start of the step [m^D]
   std::vector<double> to, from;  // Φ_{i→j}, Φ_{j→i} per neighbour-list entry
   std::vector<PressureRole> role;
   typename ParticleSet<D>::VecArray target;
+  typename ParticleSet<D>::VecArray brought;  // Σ_j Δm_j v_j of the water it took [kg m/s]
 };
 
 /// Advances the absorbed water by dt. Deletions and creations are queued in `ps` (applied by

@@ -2,6 +2,7 @@
 
 #include "porous/diffusion.hpp"
 #include "porous/porous_volume.hpp"
+#include "porous/wet_density.hpp"
 
 namespace sc {
 
@@ -47,6 +48,7 @@ void init_porous(ParticleSet<D>& ps, const PorousParams& p) {
     ps.porosity[i] = p.porosity;
     ps.saturation[i] = p.initial_saturation;
     ps.absorbed[i] = p.initial_saturation * p.fluid_density * p.porosity * porous_volume(ps, i);
+    if (carries_held_water(ps, i)) take_in_held_water(ps, i, p.porosity, p.fluid_density);
   }
 }
 

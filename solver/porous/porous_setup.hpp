@@ -19,7 +19,8 @@ void derive_porous(PorousParams& p, double dx, double h, double water_mass,
                    kernel::DensityKernel density_kernel = kernel::DensityKernel::Spiky);
 
 /// Gives every particle that is not water (and exists now: call before adding tank walls) the
-/// porosity φ0 and absorbed water S0 ρ^f φ0 V, V its porous_volume (fixed or moving alike).
+/// porosity φ0 and absorbed water S0 ρ^f φ0 V, V its porous_volume (fixed or moving alike); moving
+/// sand takes that water into its mass and rest density (take_in_held_water, eq 31).
 template <int D>
 void init_porous(ParticleSet<D>& ps, const PorousParams& p);
 

@@ -9,7 +9,9 @@
 namespace sc {
 
 /// Volume V_i of porous particle i in [thesis eq. 21] (S = m_p/(ρ^f φ V)) and in the pair flows of
-/// [thesis eq. 28]: m_i/ρ0_i, the dry skeleton's mass over its rest density, fixed or moving.
+/// [thesis eq. 28]: m_i/ρ0_i, fixed or moving: the dry skeleton's mass over its rest density, and
+/// for moving sand, whose mass and rest density include its held water (porous/wet_density.hpp,
+/// eq 31), the same rest volume, which held water does not change.
 /// Why this measure: the masses are calibrated so that a lattice reads its rest density (eq 6),
 /// m = ρ0 / Σ_k W(|k| dx, h), so m/ρ0 is not the site's dx^D but the particle's SPH volume (less than
 /// dx^D: the self term makes the lattice sum exceed the kernel's integral), and a water particle

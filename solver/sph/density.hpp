@@ -10,8 +10,11 @@ namespace sc {
 /// Mass neighbour j brings into particle i's density sum (eq 6 across phases, ours [I]). Summed
 /// by mass, another phase would read as a density jump, so two pairs count by volume instead, at
 /// i's density:
-/// - sand next to a wall particle: the wall's mass scaled by ρ0_i/ρ0_j, so sand (ρ0 = 2650) at a
-///   wall built for water is not deficient;
+/// - sand next to a wall particle or to sand of another rest density: j's mass scaled by
+///   ρ0_i/ρ0_j, so sand (ρ0 = 2650) at a wall built for water is not deficient, and wet sand,
+///   whose mass and rest density hold its pore water (eq 31, porous/wet_density.hpp), beside dry
+///   sand reads neither compression nor tension at a wetting front (test
+///   porous/a_resting_saturated_bed_has_the_wet_density_of_eq_31);
 /// - water next to sand: the grain's volume m_j/ρ0_j at the water's rest density ρ^w (after
 ///   Solenthaler & Pajarola 2008, density-contrast SPH). Counted by mass, a water particle resting
 ///   on a sand bed would read up to (1 + 2.65)/2 of its rest density, an interface 2.65x stiffer
@@ -22,7 +25,8 @@ namespace sc {
 template <int D>
 double neighbour_mass(const ParticleSet<D>& ps, std::size_t i, std::size_t j, double water_rest_density) {
   const Phase pi = ps.phase_of(i), pj = ps.phase_of(j);
-  if (pi == Phase::Sand && !ps.moves(j) && ps.rho0[j] != ps.rho0[i]) return ps.m[j] * (ps.rho0[i] / ps.rho0[j]);
+  if (pi == Phase::Sand && (pj == Phase::Sand || !ps.moves(j)) && ps.rho0[j] != ps.rho0[i])
+    return ps.m[j] * (ps.rho0[i] / ps.rho0[j]);
   if (pi == Phase::Water && pj == Phase::Sand) return ps.m[j] * (water_rest_density / ps.rho0[j]);
   return ps.m[j];
 }
