@@ -135,12 +135,10 @@ void Simulator<D>::compute_forces() {
 
 template <int D>
 double Simulator<D>::partial_water_mass() const {
-  // Water lighter than a full particle is partial (porous exchange) only without adaptive
-  // sampling, whose split particles are light too; and only around moving sand: at a fixed porous
-  // bed the parcels keep the state equation with their lowered rest density (porous_flow.cpp),
-  // which capillary_rise is validated with (with the parcel treatment its fringe came out 6 % low
-  // and held 9 % too little water, against 5 % limits).
-  return params_.porous && !params_.adaptive && has_sand_ ? params_.porous->water_mass : 0.0;
+  // One model of a partly absorbed water parcel in every porous scene, moving sand or a fixed bed,
+  // adaptive or not: is_partial_water compares a particle with a full one at its own level, so a
+  // split or merged particle is not a parcel (porous/partial_water_pressure.hpp).
+  return params_.porous ? params_.porous->water_mass : 0.0;
 }
 
 template <int D>

@@ -81,8 +81,8 @@ class Simulator {
   /// Density of every moving particle: summation (eq 6) plus, in adaptive runs, the particle's
   /// decaying density offset (solver/adaptive/density_blend.hpp).
   void compute_densities();
-  /// Mass of a full water particle when light water particles are partial ones of the porous exchange
-  /// (porous flow without adaptive sampling), else 0.
+  /// Mass m0 of a full water particle of level 0 in a porous scene, whose water particles lighter
+  /// than a full one at their level are parcels of the exchange (is_partial_water), else 0.
   double partial_water_mass() const;
   /// Neighbour lists of the current step, after putting the particles back in cell order every
   /// kSortEvery steps.
