@@ -865,14 +865,7 @@ BOOST_AUTO_TEST_CASE(compressed_wet_sand_squeezes_out_pore_water_and_keeps_the_b
   add_block(ps, p, Phase::Boundary, {-0.1, -0.03}, {0.2, 0.0}, 0.0);
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (ps.x[i][1] < 0.0) ps.porosity[i] = ps.absorbed[i] = 0.0;
-  SimulationParams sp;
-  sp.dt_max = 2.5e-4;
-  sp.eos.sound_speed = 15.0;
-  sp.gravity = {0.0, -9.81};
-  sp.domain_min = {-1.0, -1.0};
-  sp.domain_max = {1.0, 1.0};
-  sp.porous = p;
-  Simulator<2> sim(std::move(ps), sp);
+  Simulator<2> sim(std::move(ps), sand_sim_params(p));
   const double initial = total_water(sim.particles());
   double worst = 0.0, s_max = 0.0, stored = 0.0;
   for (int step = 0; step < 200; ++step) {
