@@ -56,7 +56,9 @@ void FlipSolver<D>::transfer_to_grid() {
   cells_.label = label_cells<D>(grid_, bins_, ps_.m, ps_.phase);
   cells_.air_distance = air_distance<D>(grid_, bins_, ps_.x, radius_, cells_.label);
   cells_.density.assign(grid_.cell_count(), 0.0);
-  for (std::size_t c = 0; c < cells_.label.size(); ++c)
+  const long cells = static_cast<long>(cells_.label.size());
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < cells; ++c)
     if (is_fluid(cells_.label[c]))
       cells_.density[c] = cells_.label[c] == Cell::Sand ? params_.sand.rest_density : params_.water_density;
   u_old_ = u_;
@@ -105,9 +107,12 @@ double FlipSolver<D>::step() {
   {
     auto scope = timers_.time(FlipStage::Transfer);
     transfer_to_grid();
-    for (int a = 0; a < D; ++a)  // gravity on every face that received particle mass
-      for (std::size_t k = 0; k < u_[a].size(); ++k)
+    for (int a = 0; a < D; ++a) {  // gravity on every face that received particle mass
+      const long faces = static_cast<long>(u_[a].size());
+#pragma omp parallel for schedule(static)
+      for (long k = 0; k < faces; ++k)
         if (weight_[a][k] > 0.0) u_[a][k] += params_.gravity[a] * dt;
+    }
     u_before_projection_ = u_;
   }
   {

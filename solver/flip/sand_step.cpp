@@ -1,6 +1,8 @@
 #include "flip/sand_step.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 
 #include "sand/frictional_stress.hpp"
 #include "sand/yield.hpp"
@@ -167,28 +169,28 @@ std::vector<std::vector<std::size_t>> rigid_groups(const MacGrid<D>& grid, const
 template <int D>
 std::vector<GroupFace> group_faces(const MacGrid<D>& grid, const CellState<D>& cells,
                                    const std::vector<std::size_t>& group) {
-  struct Share {
-    int axis;
-    std::size_t index;
-    double mass;
-  };
-  std::vector<Share> shares;  // one per (cell, face): merged per face below, in face order
-  shares.reserve(2 * D * group.size());
+  // In flat cell order, both the lower and the upper a-faces of the cells are in flat face order:
+  // merging the two lists visits each face once, in face order, with the cells on either side.
+  std::vector<std::size_t> sorted = group;
+  std::sort(sorted.begin(), sorted.end());
+  const std::size_t n = sorted.size();
   const double volume = std::pow(grid.dx, D);
-  for (const auto k : group) {
-    const Index<D> c = MacGrid<D>::unflat(k, grid.n);
-    for (int a = 0; a < D; ++a)
-      for (const int s : {0, 1}) shares.push_back({a, grid.face(a, shifted<D>(c, a, s)), 0.5 * cells.density[k] * volume});
-  }
-  std::stable_sort(shares.begin(), shares.end(), [](const Share& l, const Share& r) {
-    return l.axis != r.axis ? l.axis < r.axis : l.index < r.index;
-  });
   std::vector<GroupFace> out;
-  for (const Share& s : shares) {
-    if (out.empty() || out.back().axis != s.axis || out.back().index != s.index)
-      out.push_back({s.axis, s.index, 0.0,
-                     grid.is_wall_face(s.axis, MacGrid<D>::unflat(s.index, grid.face_dims(s.axis)))});
-    out.back().mass += s.mass;
+  out.reserve(D * (n + 1));
+  std::vector<std::size_t> lower(n), upper(n);
+  for (int a = 0; a < D; ++a) {
+    for (std::size_t j = 0; j < n; ++j) {
+      const Index<D> c = MacGrid<D>::unflat(sorted[j], grid.n);
+      lower[j] = grid.face(a, c);
+      upper[j] = grid.face(a, shifted<D>(c, a, 1));
+    }
+    for (std::size_t l = 0, u = 0; l < n || u < n;) {
+      const std::size_t f = std::min(l < n ? lower[l] : SIZE_MAX, u < n ? upper[u] : SIZE_MAX);
+      double mass = 0.0;  // ρ Δx^D / 2 of the cell above, then of the cell below
+      if (l < n && lower[l] == f) mass += 0.5 * cells.density[sorted[l++]] * volume;
+      if (u < n && upper[u] == f) mass += 0.5 * cells.density[sorted[u++]] * volume;
+      out.push_back({a, f, mass, grid.is_wall_face(a, MacGrid<D>::unflat(f, grid.face_dims(a)))});
+    }
   }
   return out;
 }

@@ -12,12 +12,12 @@ namespace sc::flip {
 template <int D>
 void ParticleBins<D>::build(const MacGrid<D>& grid, std::span<const Vec<D>> x) {
   const std::size_t cells = grid.cell_count();
+  const long n = static_cast<long>(x.size());
   std::vector<std::size_t> cell_of(x.size());
+#pragma omp parallel for schedule(static)
+  for (long p = 0; p < n; ++p) cell_of[p] = grid.cell(grid.cell_of(x[p]));
   start.assign(cells + 1, 0);
-  for (std::size_t p = 0; p < x.size(); ++p) {
-    cell_of[p] = grid.cell(grid.cell_of(x[p]));
-    ++start[cell_of[p] + 1];
-  }
+  for (const std::size_t c : cell_of) ++start[c + 1];
   for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
   std::vector<std::size_t> next(start.begin(), start.end() - 1);
   order.resize(x.size());
@@ -35,7 +35,9 @@ struct BinnedParticles {
   BinnedParticles(const ParticleBins<D>& bins, std::span<const Vec<D>> xs, std::span<const Vec<D>> vs,
                   std::span<const double> ms)
       : x(bins.order.size()), v(bins.order.size()), m(bins.order.size()) {
-    for (std::size_t j = 0; j < bins.order.size(); ++j) {
+    const long n = static_cast<long>(bins.order.size());
+#pragma omp parallel for schedule(static)
+    for (long j = 0; j < n; ++j) {
       x[j] = xs[bins.order[j]];
       v[j] = vs[bins.order[j]];
       m[j] = ms[bins.order[j]];
@@ -136,16 +138,21 @@ void particles_to_grid(const MacGrid<D>& grid, const ParticleBins<D>& bins, std:
     const std::size_t last = bins.start[static_cast<std::size_t>(std::min(top, hi + 2)) * layer];
     scatter<D>(grid, binned, first, last, lo, hi, weight, u);
   }
-  for (int a = 0; a < D; ++a)
-    for (std::size_t k = 0; k < u[a].size(); ++k)
+  for (int a = 0; a < D; ++a) {
+    const long faces = static_cast<long>(u[a].size());
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < faces; ++k)
       if (weight[a][k] > 0.0) u[a][k] /= weight[a][k];
+  }
 }
 
 template <int D>
 std::vector<Cell> label_cells(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const double> m,
                               std::span<const std::uint8_t> phase) {
   std::vector<Cell> label(grid.cell_count(), Cell::Air);
-  for (std::size_t c = 0; c < label.size(); ++c) {
+  const long cells = static_cast<long>(label.size());
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < cells; ++c) {
     double sand_mass = 0.0, water_mass = 0.0;
     for (const auto p : bins.in(c)) (phase[p] == static_cast<std::uint8_t>(Phase::Sand) ? sand_mass : water_mass) += m[p];
     if (sand_mass + water_mass > 0.0) label[c] = sand_mass >= water_mass ? Cell::Sand : Cell::Water;
