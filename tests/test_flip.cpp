@@ -446,6 +446,27 @@ BOOST_AUTO_TEST_CASE(collapsing_column_keeps_its_sand_volume, *boost::unit_test:
   BOOST_TEST(x_max > 0.25);  // the runout (expected failure)
 }
 
+// [Zhu-Bridson 2005: Updating Particle Velocities]: sand is PIC and water FLIP. After a step of a
+// scene with both, each sand particle's velocity is the new grid velocity at its position before
+// the step, exactly; a water particle keeps part of its own, so water differs from it.
+BOOST_AUTO_TEST_CASE(sand_takes_the_grid_velocity_and_water_the_flip_blend) {
+  FlipSolver<2> solver = sand_and_water();
+  for (int s = 0; s < 20; ++s) solver.step();
+  const FlipParticles<2> before = solver.particles();
+  solver.step();
+  const FlipParticles<2>& after = solver.particles();
+  bool sand_is_pic = true;
+  double water_from_pic = 0.0;
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    const Vec<2> pic = solver.grid().velocity_at(solver.velocity(), before.x[i]);
+    if (after.is_sand(i)) sand_is_pic = sand_is_pic && after.v[i] == pic;
+    else water_from_pic = std::max(water_from_pic, (after.v[i] - pic).norm());
+  }
+  BOOST_TEST(max_speed(after) > 0.05);
+  BOOST_TEST(sand_is_pic);
+  BOOST_TEST(water_from_pic > 1e-4);
+}
+
 // Determinism: the gathered transfers and fixed orders give bitwise the same particles with 1 and
 // 2 OpenMP threads (sand collapsing, water sloshing).
 BOOST_AUTO_TEST_CASE(one_and_two_threads_bitwise_identical) {

@@ -1,5 +1,6 @@
 #include "flip/flip_solver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <stdexcept>
@@ -37,7 +38,10 @@ void seed_box(const MacGrid<D>& grid, const Vec<D>& lo, const Vec<D>& hi, Phase 
 
 template <int D>
 FlipSolver<D>::FlipSolver(const FlipParams<D>& params, FlipParticles<D> particles)
-    : params_(params), ps_(std::move(particles)), grid_(params.tank_lo, params.tank_hi, params.dx), radius_(ps_.size()) {
+    : params_(params), ps_(std::move(particles)), grid_(params.tank_lo, params.tank_hi, params.dx), radius_(ps_.size()),
+      flip_water_(params.flip_ratio > 0.0 && std::ranges::any_of(ps_.phase, [](std::uint8_t phase) {
+                    return phase != static_cast<std::uint8_t>(Phase::Sand);
+                  })) {
   for (std::size_t i = 0; i < ps_.size(); ++i)
     radius_[i] = 0.5 * particle_size<D>(ps_.m[i] / (ps_.is_sand(i) ? params_.sand.rest_density : params_.water_density));
 }
@@ -61,7 +65,7 @@ void FlipSolver<D>::transfer_to_grid() {
   for (long c = 0; c < cells; ++c)
     if (is_fluid(cells_.label[c]))
       cells_.density[c] = cells_.label[c] == Cell::Sand ? params_.sand.rest_density : params_.water_density;
-  u_old_ = u_;
+  if (flip_water_) u_old_ = u_;
 }
 
 template <int D>
@@ -90,9 +94,14 @@ void FlipSolver<D>::update_particles(double dt) {
   const long n = static_cast<long>(ps_.size());
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {
-    const double ratio = ps_.is_sand(static_cast<std::size_t>(i)) ? 0.0 : params_.flip_ratio;
-    const auto [pic, old] = grid_.velocities_at(u_, u_old_, ps_.x[i]);
-    ps_.v[i] = grid_to_particle<D>(pic, old, ps_.v[i], ratio);
+    Vec<D> pic;
+    if (ps_.is_sand(static_cast<std::size_t>(i)) || !flip_water_) {  // PIC: the grid's velocity
+      pic = ps_.v[i] = grid_.velocity_at(u_, ps_.x[i]);
+    } else {
+      const auto [now, old] = grid_.velocities_at(u_, u_old_, ps_.x[i]);
+      pic = now;
+      ps_.v[i] = grid_to_particle<D>(now, old, ps_.v[i], params_.flip_ratio);
+    }
     ps_.x[i] = advect_rk2<D>(grid_, u_, ps_.x[i], pic, dt);
   }
   for (std::size_t i = 0; i < ps_.size(); ++i)
@@ -127,7 +136,7 @@ double FlipSolver<D>::step() {
   {
     auto scope = timers_.time(FlipStage::Advection);
     FaceField<D>* const fields[] = {&u_, &u_old_};
-    extrapolate<D>(grid_, cells_.label, params_.extrapolation_layers, fields);
+    extrapolate<D>(grid_, cells_.label, params_.extrapolation_layers, std::span(fields, flip_water_ ? 2 : 1));
     update_particles(dt);
   }
   time_ += dt;

@@ -110,6 +110,7 @@ class FlipSolver {
   std::vector<double> radius_;  ///< per particle half its spacing (m/ρ)^(1/D), for the surface distance
   ParticleBins<D> bins_;
   FaceField<D> u_, u_old_, weight_;
+  bool flip_water_;  ///< whether some water particle takes a FLIP share: only then is u_old_ kept and extended
   FaceField<D> u_before_projection_;  ///< u after gravity, for the wall friction (kept: no reallocation per step)
   CellState<D> cells_;
   SandCells<D> sand_;
