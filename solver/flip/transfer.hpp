@@ -49,7 +49,8 @@ std::vector<double> air_distance(const MacGrid<D>& grid, const ParticleBins<D>& 
 /// Grid-to-particle update [Zhu-Bridson 2005: Updating Particle Velocities] of a particle of
 /// velocity v, given the new and the old grid velocity interpolated at the particle (pic, old): PIC
 /// takes pic, FLIP adds the change pic − old to the particle's velocity; v ← (1 − r) v_PIC + r v_FLIP
-/// with the FLIP ratio r (r = 0 for sand: PIC, "for viscous flow such as sand"; r near 1 for water).
+/// with the FLIP ratio r (near 1 for water). Sand does not pass here: it is PIC ("for viscous flow
+/// such as sand"), its velocity the grid's (FlipSolver::update_particles).
 template <int D>
 Vec<D> grid_to_particle(const Vec<D>& pic, const Vec<D>& old, const Vec<D>& v, double flip_ratio);
 
