@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages sandcastle needs, if any is missing (run as root).
 set -euo pipefail
 packages=(build-essential cmake libeigen3-dev libboost-test-dev libgsl-dev nlohmann-json3-dev libcli11-dev
-          libtinyobjloader-dev
+          libtinyobjloader-dev libopenvdb-dev libboost-iostreams-dev
           clang libclang-rt-14-dev libomp-14-dev
           python3 python3-matplotlib python3-numpy git)
 missing=()

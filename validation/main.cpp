@@ -25,14 +25,18 @@ const CLI::Validator output_folder(
     "FOLDER");
 
 int run_command(const std::string& case_file, const std::string& out_dir, const std::string& tier, double spacing,
-                long checkpoint_every, const std::string& resume_from, const std::string& method, double max_particles) {
+                long checkpoint_every, const std::string& resume_from, const std::string& method, double max_particles,
+                bool surfaces) {
   const sc::CaseSpec spec = sc::with_method(sc::load_case(case_file), method);
+  if (surfaces && spec.dimension != 3)
+    throw sc::InputError(case_file, "/dimension", "--surface needs a 3-D case (2-D cases are drawn as particles)");
   if (!spec.tiers.count(tier)) throw sc::InputError(case_file, "/tiers", "the case has no " + tier + " tier (try --tier full)");
   const double dx = spacing > 0.0 ? spacing : spec.tiers.at(tier).spacings.back();
   sc::check_particle_count(spec, dx, max_particles, spacing > 0.0 ? "(--spacing)" : "/tiers/" + tier + "/spacings");
   sc::RunSettings settings;
   settings.out_dir = out_dir;
   settings.write_frames = true;
+  settings.write_surfaces = surfaces;
   settings.end_time = spacing > 0.0 ? 0.0 : spec.tiers.at(tier).end_time;
   settings.label = spec.name;
   settings.checkpoint_every = checkpoint_every;
@@ -100,6 +104,9 @@ int main(int argc, char** argv) {
   run->add_option("--max-particles", max_particles, max_help)->check(CLI::PositiveNumber);
   std::string run_method;
   run->add_option("--method", run_method, "simulation method, overriding the case's \"method\" (one the case supports)");
+  bool run_surfaces = false;
+  run->add_flag("--surface", run_surfaces,
+                "with each frame, write surface_<phase>_NNNNN.vtp of the water and the sand (3-D; listed in frames.pvd)");
 
   sc::ValidateOptions vopt;
   CLI::App* val = app.add_subcommand("validate", "Run the validation cases and write report.json, plots, summary.md");
@@ -158,7 +165,8 @@ int main(int argc, char** argv) {
     sc::set_data_root(root);
     if (bopt.out_dir.empty()) bopt.out_dir = sc::data_path("reports/baseline-run");
     if (*run)
-      return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from, run_method, max_particles);
+      return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from, run_method, max_particles,
+                         run_surfaces);
     if (*bl) return bless_command(bopt, bless_from);
     if (*cmp) return sc::compare_runs(compare_a, compare_b, compare_out, compare_plots);
     if (*bench) return sc::bench(benchopt);

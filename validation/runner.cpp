@@ -17,12 +17,32 @@
 #include "report.hpp"
 #include "restart.hpp"
 #include "simulator/sph_probe.hpp"
+#include "surface/surface_mesh.hpp"
 
 namespace fs = std::filesystem;
 
 namespace sc {
 
 namespace {
+
+std::string surface_name(Phase phase, std::size_t frame) {
+  char name[48];
+  std::snprintf(name, sizeof name, "surface_%s_%05zu.vtp", std::string(phase_name(phase)).c_str(), frame);
+  return name;
+}
+
+/// surface_<phase>_NNNNN.vtp of frame k: the surface of the particles of each phase of water and
+/// sand that has any, for the spacing dx (surface/surface_mesh.hpp).
+void write_surfaces(const ParticleView<3>& view, double dx, const std::string& dir, std::size_t frame) {
+  for (const Phase phase : {Phase::Water, Phase::Sand}) {
+    std::vector<Vec<3>> x;
+    for (std::size_t i = 0; i < view.size(); ++i)
+      if (view.phase_of(i) == phase) x.push_back(view.x[i]);
+    if (x.empty()) continue;
+    const surface::SurfaceMesh mesh = surface::reconstruct_surface(x, {.spacing = dx});
+    write_file_atomic(dir + "/" + surface_name(phase, frame), surface::vtp_document(mesh));
+  }
+}
 
 template <int D>
 RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& settings) {
@@ -39,12 +59,20 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
 
   auto& frames = log.frames;
   double& next_frame = log.next_frame;
+  const auto surfaces_of = [&](std::size_t frame) {  // the surface files written beside a frame
+    std::vector<std::string> files;
+    for (const Phase phase : {Phase::Water, Phase::Sand})
+      if (fs::exists(settings.out_dir + "/" + surface_name(phase, frame))) files.push_back(surface_name(phase, frame));
+    return files;
+  };
   auto write_frame = [&]() {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05zu.vtu", frames.size());
     write_file_atomic(settings.out_dir + "/" + name, run.vtu_frame());
+    if constexpr (D == 3)
+      if (settings.write_surfaces) write_surfaces(run.particles(), dx, settings.out_dir, frames.size());
     frames.emplace_back(run.time(), name);
-    write_file_atomic(settings.out_dir + "/frames.pvd", pvd_document(frames));
+    write_file_atomic(settings.out_dir + "/frames.pvd", pvd_document(frames, surfaces_of));
   };
 
   const auto start = std::chrono::steady_clock::now();

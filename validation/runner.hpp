@@ -35,6 +35,7 @@ struct RunSettings {
   std::string out_dir;          ///< where this run writes its files
   double end_time = 0.0;        ///< 0 = the case's end time
   bool write_frames = false;    ///< VTU frames at the case's frame interval (`run`)
+  bool write_surfaces = false;  ///< with each frame, the surface of each phase (3-D, `run --surface`)
   std::string label;            ///< progress label
   long checkpoint_every = 0;    ///< write checkpoint_<step>.ckpt every N steps (0: none)
   std::string resume_from;      ///< checkpoint to continue from (empty: start at t = 0)

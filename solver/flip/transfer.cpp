@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include "sand/rigid_body.hpp"
+#include "surface/implicit_surface.hpp"
 
 namespace sc::flip {
 
@@ -162,8 +163,8 @@ std::vector<Cell> label_cells(const MacGrid<D>& grid, const ParticleBins<D>& bin
 
 namespace {
 
-/// φ(x_c) = |x_c − x̄| − r̄ at the centre of cell c, x̄ and r̄ the k-weighted means of the particle
-/// positions and radii within `reach`, k(s) = (1 − s²)³; Δx when no particle is within reach.
+/// φ(x_c) of surface/implicit_surface.hpp at the centre of cell c, the particles within `reach`;
+/// clamped to [0, Δx], and Δx when no particle is within reach.
 template <int D>
 double surface_distance(const MacGrid<D>& grid, const ParticleBins<D>& bins, std::span<const Vec<D>> x,
                         std::span<const double> radius, double reach, const Index<D>& c) {
@@ -171,23 +172,15 @@ double surface_distance(const MacGrid<D>& grid, const ParticleBins<D>& bins, std
   const int rings = static_cast<int>(std::ceil(reach / grid.dx));
   Index<D> extent{};
   extent.fill(2 * rings + 1);
-  double w_sum = 0.0, r_sum = 0.0;
-  Vec<D> x_sum = Vec<D>::Zero();
+  surface::SurfaceAverage<D> average(xc, reach);
   for (std::size_t j = 0; j < MacGrid<D>::count(extent); ++j) {
     Index<D> nb = MacGrid<D>::unflat(j, extent);
     for (int d = 0; d < D; ++d) nb[d] += c[d] - rings;
     if (!MacGrid<D>::inside(nb, grid.n)) continue;
-    for (const auto p : bins.in(grid.cell(nb))) {
-      const double s2 = (x[p] - xc).squaredNorm() / (reach * reach);
-      if (s2 >= 1.0) continue;
-      const double w = (1.0 - s2) * (1.0 - s2) * (1.0 - s2);
-      w_sum += w;
-      x_sum += w * x[p];
-      r_sum += w * radius[p];
-    }
+    for (const auto p : bins.in(grid.cell(nb))) average.add(x[p], radius[p]);
   }
-  if (w_sum == 0.0) return grid.dx;
-  return std::clamp((xc - x_sum / w_sum).norm() - r_sum / w_sum, 0.0, grid.dx);
+  if (average.empty()) return grid.dx;
+  return std::clamp(average.phi(), 0.0, grid.dx);
 }
 
 /// Whether cell c has a fluid cell across one of its faces: only such air cells have a face between

@@ -2,6 +2,7 @@
 // a point array, and a PVD collection that lists the frames with their times.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <sstream>
 #include <string>
@@ -65,7 +66,10 @@ std::string vtu_points_document(std::span<const Vec<D>> x, const VisitFields& vi
 template <int D>
 std::string vtu_document(const ParticleSet<D>& ps);
 
-/// The PVD collection listing (time, relative file name) pairs.
-std::string pvd_document(const std::vector<std::pair<double, std::string>>& frames);
+/// The PVD collection listing (time, relative file name) pairs; `parts(k)` names further files of
+/// frame k (its surfaces), listed as parts 1, 2, ... of that time step so that ParaView plays them
+/// together with the particles (part 0).
+std::string pvd_document(const std::vector<std::pair<double, std::string>>& frames,
+                         const std::function<std::vector<std::string>(std::size_t)>& parts = {});
 
 }  // namespace sc

@@ -44,15 +44,15 @@ class CellGrid {
     for (std::size_t i = 0; i < x.size(); ++i) sorted_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
   }
 
-  /// Calls f(j) for every point j in the 3^D cells around position p (a superset of the points
-  /// within one cell size of p), in a fixed order.
+  /// Calls f(j) for every point j in the (2 rings + 1)^D cells around position p (a superset of
+  /// the points within `rings` cell sizes of p), in a fixed order.
   template <class F>
-  void for_each_near(const Vec<D>& p, F&& f) const {
+  void for_each_near(const Vec<D>& p, F&& f, int rings = 1) const {
     std::array<std::int64_t, D> c, from, to;
     for (int d = 0; d < D; ++d) {
       c[d] = static_cast<std::int64_t>(std::floor((p[d] - lo_[d]) / cell_));
-      from[d] = std::max<std::int64_t>(c[d] - 1, 0);
-      to[d] = std::min<std::int64_t>(c[d] + 1, dims_[d] - 1);
+      from[d] = std::max<std::int64_t>(c[d] - rings, 0);
+      to[d] = std::min<std::int64_t>(c[d] + rings, dims_[d] - 1);
       if (from[d] > to[d]) return;
     }
     std::array<std::int64_t, D> k = from;
