@@ -1,7 +1,7 @@
 // DEM grains after Rungjiratananon et al. 2008 behind the method seam: DemMethod<D> steps the grains
 // of this folder as a Method<D>, a case's sand blocks packed as poured columns, the tank's closed
 // sides as contact planes, with DEM's own numbers from the case's "methods": {"dem": {...}}
-// object (cases/README.md, docs/dem.md). The runs behind the seam are dry: the wetness, bridges and
+// object (cases/README.md, docs/equations.md §7). The runs behind the seam are dry: the wetness, bridges and
 // SPH-water coupling of this folder are exercised by their unit tests (tests/test_dem.cpp).
 #pragma once
 #include <memory>
@@ -16,7 +16,7 @@
 namespace sc {
 
 /// DEM's own parameters of a case, "methods"/"dem" (every key optional):
-///   friction           grain-grain Coulomb coefficient μ (calibrated per friction angle, docs/dem.md)
+///   friction           grain-grain Coulomb coefficient μ (calibrated per friction angle, docs/references.md §12)
 ///   rolling_friction   rolling resistance μ_r (torque bound μ_r R_eff |F_n|)
 ///   wall_friction      Coulomb coefficient of the tank's rough ("no_slip") sides (default: friction);
 ///                      "slip" sides are frictionless
