@@ -89,7 +89,8 @@ ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, con
   // Contact-point velocity of i relative to j; written (v_i − v_j) + (a_i ω_i + a_j ω_j) × n so that
   // j's evaluation is the exact negative.
   const Vec<D> vc = (g.v[i] - g.v[j]) + spin_cross<D>(ai * g.omega[i] + aj * g.omega[j], n);
-  const Contact<D> c{n, overlap, vc, g.omega[i] - g.omega[j], 1.0 + g.saturation(i, p) + g.saturation(j, p),
+  // 1 + (w_i + w_j), not (1 + w_i) + w_j: the same bits from either side of the pair.
+  const Contact<D> c{n, overlap, vc, g.omega[i] - g.omega[j], 1.0 + (g.saturation(i, p) + g.saturation(j, p)),
                      p.friction, r_eff, ai};
   const ContactForce<D> f = contact_force(c, p, dt, spring);
   out.force += f.force;
