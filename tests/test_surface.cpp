@@ -139,6 +139,54 @@ BOOST_AUTO_TEST_CASE(mesh_is_closed_and_thread_independent) {
   }
 }
 
+// Wet sand shown darker: a block of uniform saturation 0.3 gives 0.3 at every vertex (to round-off);
+// a block whose left half is dry and right half saturated reads 0 at its left end and 1 at its
+// right end, and the VTP carries the array.
+BOOST_AUTO_TEST_CASE(vertices_carry_the_particles_saturation) {
+  const double s = 0.01;
+  const std::vector<Vec<3>> x = lattice(12, 6, 6, s, Vec<3>::Zero(), 0.3);
+  SurfaceMesh mesh = reconstruct_surface(x, {s, 0.25, 1});
+  attach_saturation(mesh, x, std::vector<double>(x.size(), 0.3), {s, 0.25, 1});
+  double worst = 0.0;
+  for (const double v : mesh.saturation) worst = std::max(worst, std::abs(v - 0.3));
+  BOOST_TEST(mesh.saturation.size() == mesh.points.size());
+  BOOST_TEST(worst < 1e-14);
+  std::vector<double> halves;
+  for (const auto& p : x) halves.push_back(p[0] < 6.0 * s ? 0.0 : 1.0);
+  attach_saturation(mesh, x, halves, {s, 0.25, 1});
+  double left = 0.0, right = 1.0;  // the wettest vertex of the left end, the driest of the right end
+  int ends = 0;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    if (mesh.points[v][0] < 2.0 * s) {
+      left = std::max(left, mesh.saturation[v]);
+      ++ends;
+    }
+    if (mesh.points[v][0] > 10.0 * s) {
+      right = std::min(right, mesh.saturation[v]);
+      ++ends;
+    }
+  }
+  BOOST_TEST(ends > 100);
+  BOOST_TEST(left == 0.0);
+  BOOST_TEST(right == 1.0);
+  BOOST_TEST(vtp_document(mesh).find("Name=\"saturation\"") != std::string::npos);
+  std::vector<double> ramp;  // a saturation varying along x: each vertex the kernel mean over all particles
+  for (const auto& p : x) ramp.push_back(p[0] / (12.0 * s));
+  attach_saturation(mesh, x, ramp, {s, 0.25, 1});
+  double off = 0.0;
+  for (std::size_t v = 0; v < mesh.points.size(); v += 37) {
+    double w_sum = 0.0, s_sum = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double q = (x[i] - mesh.points[v]).squaredNorm() / (4.0 * s * s);
+      if (q >= 1.0) continue;
+      w_sum += (1 - q) * (1 - q) * (1 - q);
+      s_sum += (1 - q) * (1 - q) * (1 - q) * ramp[i];
+    }
+    off = std::max(off, std::abs(mesh.saturation[v] - s_sum / w_sum));
+  }
+  BOOST_TEST(off < 1e-12);
+}
+
 // The VTP document lists every point and triangle (ParaView's PolyData: connectivity and offsets).
 BOOST_AUTO_TEST_CASE(vtp_document_lists_points_and_triangles) {
   const SurfaceMesh mesh = reconstruct_surface(lattice(3, 3, 3, 0.01, Vec<3>::Zero()), {0.01, 0.25, 1});

@@ -32,14 +32,21 @@ std::string surface_name(Phase phase, std::size_t frame) {
 }
 
 /// surface_<phase>_NNNNN.vtp of frame k: the surface of the particles of each phase of water and
-/// sand that has any, for the spacing dx (surface/surface_mesh.hpp).
+/// sand that has any, for the spacing dx (surface/surface_mesh.hpp); the sand's carries the
+/// particles' saturation where the method has one.
 void write_surfaces(const ParticleView<3>& view, double dx, const std::string& dir, std::size_t frame) {
   for (const Phase phase : {Phase::Water, Phase::Sand}) {
     std::vector<Vec<3>> x;
+    std::vector<double> saturation;
+    const bool wet = phase == Phase::Sand && !view.saturation.empty();
     for (std::size_t i = 0; i < view.size(); ++i)
-      if (view.phase_of(i) == phase) x.push_back(view.x[i]);
+      if (view.phase_of(i) == phase) {
+        x.push_back(view.x[i]);
+        if (wet) saturation.push_back(view.saturation[i]);
+      }
     if (x.empty()) continue;
-    const surface::SurfaceMesh mesh = surface::reconstruct_surface(x, {.spacing = dx});
+    surface::SurfaceMesh mesh = surface::reconstruct_surface(x, {.spacing = dx});
+    if (wet) surface::attach_saturation(mesh, x, saturation, {.spacing = dx});
     write_file_atomic(dir + "/" + surface_name(phase, frame), surface::vtp_document(mesh));
   }
 }

@@ -96,6 +96,36 @@ SurfaceMesh reconstruct_surface(std::span<const Vec<3>> x, const SurfaceOptions&
   return mesh;
 }
 
+void attach_saturation(SurfaceMesh& mesh, std::span<const Vec<3>> x, std::span<const double> saturation,
+                       const SurfaceOptions& options) {
+  if (x.size() != saturation.size()) throw std::invalid_argument("attach_saturation: one saturation per particle");
+  mesh.saturation.assign(mesh.points.size(), 0.0);
+  if (x.empty()) return;
+  CellGrid<3> cells;
+  const double reach = options.reach();
+  cells.build(x, 0.5 * reach);
+  const long n = static_cast<long>(mesh.points.size());
+#pragma omp parallel for schedule(static)
+  for (long v = 0; v < n; ++v) {
+    const Vec<3>& at = mesh.points[v];
+    double w_sum = 0.0, s_sum = 0.0, nearest = INFINITY;
+    std::size_t closest = 0;
+    cells.for_each_near(at, [&](std::uint32_t j) {
+      const double d2 = (x[j] - at).squaredNorm();
+      if (d2 < nearest) {
+        nearest = d2;
+        closest = j;
+      }
+      const double s2 = d2 / (reach * reach);
+      if (s2 >= 1.0) return;
+      const double w = (1.0 - s2) * (1.0 - s2) * (1.0 - s2);
+      w_sum += w;
+      s_sum += w * saturation[j];
+    }, 2);
+    mesh.saturation[v] = w_sum > 0.0 ? s_sum / w_sum : saturation[closest];
+  }
+}
+
 double enclosed_volume(const SurfaceMesh& mesh) {
   double v = 0.0;
   for (const auto& t : mesh.triangles)
@@ -128,7 +158,13 @@ std::string vtp_document(const SurfaceMesh& mesh) {
   o << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
   for (std::size_t k = 1; k <= mesh.triangles.size(); ++k)
     o << 3 * k << (k % 16 == 0 || k == mesh.triangles.size() ? '\n' : ' ');
-  o << "</DataArray>\n</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  o << "</DataArray>\n</Polys>\n";
+  if (!mesh.saturation.empty()) {
+    o << "<PointData Scalars=\"saturation\">\n<DataArray type=\"Float64\" Name=\"saturation\" format=\"ascii\">\n";
+    for (const double s : mesh.saturation) o << s << '\n';
+    o << "</DataArray>\n</PointData>\n";
+  }
+  o << "</Piece>\n</PolyData>\n</VTKFile>\n";
   return o.str();
 }
 

@@ -26,6 +26,7 @@ struct SurfaceOptions {
 struct SurfaceMesh {
   std::vector<Vec<3>> points;
   std::vector<std::array<std::uint32_t, 3>> triangles;
+  std::vector<double> saturation;  ///< per point, when the particles carry one (wet sand shown darker); else empty
 };
 
 /// The surface of the particles at `x` [Zhu-Bridson 2005: Surface Reconstruction]: φ of
@@ -35,6 +36,12 @@ struct SurfaceMesh {
 /// with any number of threads.
 SurfaceMesh reconstruct_surface(std::span<const Vec<3>> x, const SurfaceOptions& options);
 
+/// Sets mesh.saturation: per point the mean of the particles' `saturation` within R of it, weighted by
+/// the kernel of SurfaceAverage (k = (1 − |x − x_i|²/R²)³), gathered in a fixed order; the nearest
+/// particle's where none is within R (a vertex lies within R of the particles that made it).
+void attach_saturation(SurfaceMesh& mesh, std::span<const Vec<3>> x, std::span<const double> saturation,
+                       const SurfaceOptions& options);
+
 /// The volume a closed mesh encloses, Σ_t x_0·(x_1 × x_2)/6 over its triangles (positive when its
 /// normals point out) [m³].
 double enclosed_volume(const SurfaceMesh& mesh);
@@ -43,7 +50,8 @@ double enclosed_volume(const SurfaceMesh& mesh);
 /// directions (closed, manifold along edges, consistently oriented) and no triangle repeats a vertex.
 bool is_closed_and_oriented(const SurfaceMesh& mesh);
 
-/// The VTP document (VTK polygonal data, ASCII, ParaView) of a mesh: its points and triangles.
+/// The VTP document (VTK polygonal data, ASCII, ParaView) of a mesh: its points and triangles, and
+/// the point array "saturation" when the mesh has one.
 std::string vtp_document(const SurfaceMesh& mesh);
 
 }  // namespace sc::surface
