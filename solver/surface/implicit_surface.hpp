@@ -9,6 +9,9 @@
 
 namespace sc::surface {
 
+/// Zhu & Bridson's kernel k(s) = max(0, (1 − s²)³), given s² = |x − x_i|²/R².
+inline double surface_kernel(double s2) { return s2 >= 1.0 ? 0.0 : (1.0 - s2) * (1.0 - s2) * (1.0 - s2); }
+
 /// φ(x) = |x − x̄| − r̄ at a point x [Zhu-Bridson 2005: Surface Reconstruction], with
 /// x̄ = Σ k_i x_i / Σ k_i and r̄ = Σ k_i r_i / Σ k_i over the particles i, k_i = k(|x − x_i|/R),
 /// k(s) = max(0, (1 − s²)³), R the neighbourhood (Zhu & Bridson: twice the mean particle spacing).
@@ -21,9 +24,8 @@ class SurfaceAverage {
 
   /// Adds particle x of radius r if it lies within the neighbourhood.
   void add(const Vec<D>& x, double r) {
-    const double s2 = (x - at_).squaredNorm() / (reach_ * reach_);
-    if (s2 >= 1.0) return;
-    const double w = (1.0 - s2) * (1.0 - s2) * (1.0 - s2);
+    const double w = surface_kernel((x - at_).squaredNorm() / (reach_ * reach_));
+    if (w == 0.0) return;
     w_sum_ += w;
     x_sum_ += w * x;
     r_sum_ += w * r;

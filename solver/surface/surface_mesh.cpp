@@ -116,9 +116,7 @@ void attach_saturation(SurfaceMesh& mesh, std::span<const Vec<3>> x, std::span<c
         nearest = d2;
         closest = j;
       }
-      const double s2 = d2 / (reach * reach);
-      if (s2 >= 1.0) return;
-      const double w = (1.0 - s2) * (1.0 - s2) * (1.0 - s2);
+      const double w = surface_kernel(d2 / (reach * reach));
       w_sum += w;
       s_sum += w * saturation[j];
     }, 2);
