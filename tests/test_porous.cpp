@@ -193,6 +193,28 @@ BOOST_AUTO_TEST_CASE(two_particle_diffusion_eq_28_29_direction) {
   BOOST_TEST(pair_flow(j, i, 0.6) == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(pair_flow_of_unequal_supports_uses_their_mean) {
+  // [thesis eq. 28] in the pair form 28′ between particles of unequal supports (adaptive water beside
+  // sand, different particle sizes): the flow uses h̄ = (h_i + h_j)/2 in L_ij and in ∇²W, so it is
+  // the same whichever side has the larger support, and it is the closed form at h̄.
+  ExchangeSlot<2> i, j;
+  i.x = Vec<2>(0.0, 0.0);
+  j.x = Vec<2>(0.003, 0.012);
+  for (auto* s : {&i, &j}) { s->volume = 1e-4; s->capacity = 0.04; }
+  j.mass = 0.03; j.flow_factor = 0.7;
+  j.pore_velocity = Vec<2>(-0.02, -0.1);
+  i.h = 0.02;
+  j.h = 0.03;
+  const double flow = pair_flow(j, i, 0.6);
+  std::swap(i.h, j.h);
+  BOOST_TEST(flow > 0.0);
+  BOOST_TEST(pair_flow(j, i, 0.6) == flow);
+  const Vec<2> d = i.x - j.x;
+  const double r = d.norm(), hbar = 0.025, u = j.pore_velocity.dot(d) / r;
+  const double closed = 0.6 * hbar * u * 0.7 * 0.03 * 1e-4 * kernel::viscosity_laplacian<2>(r, hbar);
+  BOOST_TEST(flow == closed, boost::test_tools::tolerance(1e-12));
+}
+
 BOOST_AUTO_TEST_CASE(literal_eq_28_gives_surface_water_a_pore_velocity_as_lenaerts_case_b) {
   // [thesis eq. 28] as printed (porous.diffusion = "lenaerts_literal"): free water next to a dry
   // porous bed takes part as Lenaerts' case B, a saturated porous particle with φ = 1 and S = 1, so
