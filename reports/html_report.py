@@ -208,6 +208,29 @@ def methods_section(run_dir, comparisons):
     return out
 
 
+def convergence_section(run_dir, studies):
+    """Convergence studies: per case, method and metric the error at each spacing, the observed
+    order (least-squares slope in log-log) beside the expected one, and the log-log plots
+    (report.json "convergence")."""
+    rows = []
+    for s in studies:
+        spacings = ", ".join(number(dx) for dx in s["spacings"])
+        for name, m in s["metrics"].items():
+            errors = ", ".join(number(e) for e in m["errors"])
+            rows.append([esc(s["case"]), esc(s["method"]), esc(name), spacings, errors,
+                         number(m["observed_order"]), number(m["expected_order"])])
+        for r in s["runs"]:
+            if r["status"] == "error":
+                rows.append([esc(s["case"]), esc(s["method"]), (f"error at dx {number(r['spacing'])}", "error"),
+                             esc(r["message"]), "", "", ""])
+    out = ("<h2 id=\"convergence\">Convergence</h2><p>Each case run at the spacings of its study; the observed "
+           "order is the least-squares slope of log(error) against log(dx).</p>"
+           + table(["case", "method", "metric", "spacings [m]", "errors", "observed order", "expected order"], rows))
+    for s in studies:
+        out += "<div>" + "".join(image(os.path.join(run_dir, p)) for p in s["plots"]) + "</div>"
+    return out
+
+
 def main():
     run_dir = sys.argv[1]
     with open(os.path.join(run_dir, "report.json")) as f:
@@ -217,6 +240,8 @@ def main():
         body += methods_section(run_dir, report["methods"])
     if "errata" in report:
         body += errata_section(report["errata"])
+    if "convergence" in report:
+        body += convergence_section(run_dir, report["convergence"])
     body += "".join(case_section(run_dir, c) for c in report["cases"])
     path = os.path.join(run_dir, "report.html")
     with open(path + ".tmp", "w") as f:

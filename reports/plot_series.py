@@ -3,8 +3,8 @@
 
 Usage: plot_series.py RUN_DIR
 Reads RUN_DIR/report.json, and for every case its series.json (format: reports/README.md) and
-for every side-by-side comparison of methods its methods.json, and writes each plot they describe
-next to them. Uses matplotlib (Debian: python3-matplotlib).
+for every side-by-side comparison of methods its methods.json and for every convergence study its
+series.json, and writes each plot they describe next to them. Uses matplotlib (Debian: python3-matplotlib).
 """
 import json
 import os
@@ -28,6 +28,9 @@ def draw(case_dir, doc):
                 ax.plot(s["x"], s["y"], "o", ms=5, mfc="none", label=curve["label"])
             else:
                 ax.plot(s["x"], s["y"], "-", lw=1.6, label=curve["label"])
+        if plot.get("log_log"):
+            ax.set_xscale("log")
+            ax.set_yscale("log")
         ax.set_title(plot["title"], fontsize=10)
         ax.set_xlabel(plot["x_label"])
         ax.set_ylabel(plot["y_label"])
@@ -42,7 +45,7 @@ def main():
     run_dir = sys.argv[1]
     with open(os.path.join(run_dir, "report.json")) as f:
         report = json.load(f)
-    for case in report["cases"] + report.get("methods", []):
+    for case in report["cases"] + report.get("methods", []) + report.get("convergence", []):
         if not case.get("series"):
             continue
         path = os.path.join(run_dir, case["series"])

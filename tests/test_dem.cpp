@@ -117,21 +117,24 @@ double repose_angle_2d(double mu, double mu_r, int threads = 0, Grains<2>* out =
   return -std::atan(slope) * 180.0 / pi;
 }
 
-}  // namespace
-
-BOOST_AUTO_TEST_SUITE(dem)
-
-// [Rungjiratananon 2008: DEM normal force]: a sphere launched at a floor rebounds with the
-// restitution of the damped oscillator and stays in contact for its half period.
-BOOST_AUTO_TEST_CASE(floor_bounce_restitution_and_contact_time) {
+/// A sphere holding water at saturation s (no radius shrink) launched at a floor at 0.1 m/s, ζ = 0.2
+/// of its dry dashpot; returns its restitution and contact time beside those of the damped
+/// oscillator whose dashpot the wetness raises to (1 + s) k_d (a wall contact's wet factor), with the
+/// mass of grain and water.
+struct Bounce {
+  double e, t_c;
+  Oscillator ref;
+};
+Bounce floor_bounce(double saturation) {
   Grains<3> g;
   const double R = 1e-3;
   g.add(Vec<3>(0.0, R + 1e-6, 0.0), R, 2650.0);
-  g.v[0] = Vec<3>(0.0, -0.1, 0.0);
   Params p;
+  g.water[0] = saturation * g.capacity(0, p);
+  g.v[0] = Vec<3>(0.0, -0.1, 0.0);
   p.stiffness = 1e3;
-  p.damping = 0.2 * 2.0 * std::sqrt(p.stiffness * g.mass(0));  // ζ = 0.2
-  const Oscillator ref(p.stiffness, p.damping, g.mass(0));
+  p.damping = 0.2 * 2.0 * std::sqrt(p.stiffness * g.dry_mass[0]);
+  const Oscillator ref(p.stiffness, (1.0 + saturation) * p.damping, g.mass(0));
   const double dt = std::sqrt(g.mass(0) / p.stiffness) / 2000.0;
   const std::vector<Plane<3>> floor{{Vec<3>::Zero(), Vec<3>(0, 1, 0)}};
   NeighbourList<3> grid;
@@ -143,10 +146,24 @@ BOOST_AUTO_TEST_CASE(floor_bounce_restitution_and_contact_time) {
     if (touching && t_in < 0.0) t_in = t;
     if (!touching && t_in >= 0.0) t_out = t;
   }
-  const double e = g.v[0][1] / 0.1;
-  BOOST_TEST_MESSAGE("e = " << e << " (analytic " << ref.e << "), t_c = " << t_out - t_in << " (" << ref.t_c << ")");
-  BOOST_TEST(std::abs(e / ref.e - 1.0) < 1e-3);
-  BOOST_TEST(std::abs((t_out - t_in) / ref.t_c - 1.0) < 1e-3);
+  return {g.v[0][1] / 0.1, t_out - t_in, ref};
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(dem)
+
+// [Rungjiratananon 2008: DEM normal force]: a sphere launched at a floor rebounds with the
+// restitution of the damped oscillator and stays in contact for its half period, dry (ζ = 0.2) and
+// half saturated, where the paper's wetness raises the dashpot by 1 + s and the water adds its mass.
+BOOST_AUTO_TEST_CASE(floor_bounce_restitution_and_contact_time) {
+  for (const double s : {0.0, 0.5}) {
+    const Bounce b = floor_bounce(s);
+    BOOST_TEST_MESSAGE("s = " << s << ": e = " << b.e << " (analytic " << b.ref.e << "), t_c = " << b.t_c << " ("
+                              << b.ref.t_c << ")");
+    BOOST_TEST(std::abs(b.e / b.ref.e - 1.0) < 1e-3);
+    BOOST_TEST(std::abs(b.t_c / b.ref.t_c - 1.0) < 1e-3);
+  }
 }
 
 // Head-on collision of two unequal spheres: momentum conserved to round-off, relative speed
@@ -240,6 +257,58 @@ BOOST_AUTO_TEST_CASE(sphere_slipping_on_rough_floor_rolls_at_five_sevenths) {
   BOOST_TEST(std::abs(mu * g0 * t_roll / u0 / (2.0 / 7.0) - 1.0) < 1e-2);
   BOOST_TEST(std::abs(g.v[0][0] / u0 / (5.0 / 7.0) - 1.0) < 1e-2);
   BOOST_TEST(std::abs(-g.omega[0][2] * R / u0 / (5.0 / 7.0) - 1.0) < 1e-2);
+}
+
+// Rolling resistance [Ai et al. 2011: rolling model C] of a sphere resting on a frictionless floor
+// (no tangential force, so only the rolling torque acts on its spin ω about the rolling axis):
+// - below the bound the rolling spring k_r = 2.25 k μ_r² R² makes a torsional oscillator,
+//   ω(t) = ω0 cos(Ω t), Ω = √(k_r/I): the spin reverses to −ω0 and its zeros are half a period
+//   π/Ω apart, within 1e-3;
+// - far above it the torque sits at its bound μ_r R m g and the spin slows at the constant rate
+//   μ_r R m g/I, within 1e-3.
+BOOST_AUTO_TEST_CASE(rolling_spring_oscillates_and_its_bound_slows_a_spin) {
+  Grains<3> g;
+  const double R = 1e-3, mu_r = 0.1;
+  g.add(Vec<3>(0.0, R, 0.0), R, 2650.0);
+  Params p;
+  p.stiffness = 1e4;
+  p.wall_friction = 0.0;
+  p.rolling_friction = mu_r;
+  const double m = g.mass(0), I = g.inertia(0), k_r = 2.25 * p.stiffness * mu_r * mu_r * R * R;
+  const double omega_n = std::sqrt(k_r / I), bound = mu_r * R * m * g0;
+  const double dt = 2.0 * pi / omega_n / 4000.0;
+  const std::vector<Plane<3>> floor{{Vec<3>::Zero(), Vec<3>(0, 1, 0)}};
+  auto spin = [&](double omega0, double t_end, auto&& watch) {
+    g.x[0] = Vec<3>(0.0, R - m * g0 / p.stiffness, 0.0);  // resting on its spring
+    g.v[0].setZero();
+    g.omega[0] = Vec<3>(0.0, 0.0, omega0);
+    g.springs[0].clear();
+    NeighbourList<3> grid;
+    for (double t = 0.0; t < t_end;) {
+      const double before = g.omega[0][2];
+      step(g, grid, p, Vec<3>(0.0, -g0, 0.0), std::span<const Plane<3>>(floor), dt);
+      t += dt;
+      watch(t, before, g.omega[0][2]);
+    }
+  };
+  const double omega0 = 0.5 * bound / std::sqrt(k_r * I);  // peak torque half the bound
+  std::vector<double> zeros;
+  double lowest = omega0;
+  spin(omega0, 1.5 * 2.0 * pi / omega_n, [&](double t, double before, double after) {
+    if ((before > 0.0) != (after > 0.0)) zeros.push_back(t - dt * after / (after - before));
+    lowest = std::min(lowest, after);
+  });
+  BOOST_TEST_REQUIRE(zeros.size() >= 2u);
+  BOOST_TEST_MESSAGE("elastic: half period " << zeros[1] - zeros[0] << " s (analytic " << pi / omega_n
+                                             << "), lowest spin " << lowest / omega0 << " omega0");
+  BOOST_TEST(std::abs((zeros[1] - zeros[0]) * omega_n / pi - 1.0) < 1e-3);
+  BOOST_TEST(std::abs(lowest / omega0 + 1.0) < 1e-3);
+  const double fast = 1000.0 * omega0, t1 = 0.2 * fast * I / bound;  // past the elastic ramp, still spinning at 2 t1
+  double at_t1 = 0.0;
+  spin(fast, 2.0 * t1, [&](double t, double, double after) { if (at_t1 == 0.0 && t >= t1) at_t1 = after; });
+  const double rate = (at_t1 - g.omega[0][2]) / t1;
+  BOOST_TEST_MESSAGE("plastic: spin slows at " << rate << " rad/s^2 (analytic " << bound / I << ")");
+  BOOST_TEST(std::abs(rate / (bound / I) - 1.0) < 1e-3);
 }
 
 // [Willett 2000: eq. 12-13]: the capillary force between two wet 1 mm spheres against separation

@@ -414,6 +414,37 @@ BOOST_AUTO_TEST_CASE(wall_normal_stress_is_the_weight_of_the_layer) {
   }
 }
 
+// [Zhu-Bridson 2005: Frictional Boundary Conditions]: flowing sand (a layer 4 cells deep, every cell
+// yielding, ρ = 2000) sliding at u0 over a floor of μ_w = 0.5 under a pressure p = 500 Pa at the
+// floor loses μ_w p Δt/(ρ Δx) of its speed in one step on the faces next to the floor and nothing
+// above them; a layer slower than that bound stops and does not reverse; a rigid layer is left to
+// its rigid-group projection.
+BOOST_AUTO_TEST_CASE(wall_friction_is_the_coulomb_impulse_of_the_floor) {
+  const MacGrid<2> grid(Vec<2>::Zero(), Vec<2>(0.16, 0.1), 0.01);
+  const double rho = 2000.0, p_floor = 500.0, mu = 0.5, dt = 1e-3;
+  const CellState<2> cells = box_cells<2>(grid, {0, 0}, {16, 4}, Cell::Sand, rho);
+  const std::vector<double> p(grid.cell_count(), p_floor);
+  const FaceField<2> before = grid.zero_faces();  // nothing stopped by the floor
+  SideFriction<2> mu_side{};
+  mu_side[2] = mu;  // the floor: axis 1, lower side
+  const double loss = mu * p_floor * dt / (rho * grid.dx);
+  for (const bool yielding : {true, false})
+    for (const double u0 : {0.3, 0.5 * loss}) {
+      SandCells<2> sand;
+      sand.yielding.assign(grid.cell_count(), yielding ? 1 : 0);
+      sand.rigid.assign(grid.cell_count(), yielding ? 0 : 1);
+      sand.stress.assign(grid.cell_count(), Mat<2>::Zero());
+      FaceField<2> u = grid.zero_faces();
+      for (std::size_t k = 0; k < u[0].size(); ++k) u[0][k] = u0;
+      wall_friction<2>(grid, cells, sand, p, before, mu_side, dt, u);
+      for (int row = 0; row < 4; ++row)
+        for (int col = 1; col < 16; ++col) {  // the x-faces between sand cells
+          const double expected = !yielding || row > 0 ? u0 : std::max(0.0, u0 - loss);
+          BOOST_TEST(u[0][grid.face(0, {col, row})] == expected, boost::test_tools::tolerance(1e-12));
+        }
+    }
+}
+
 // docs/references.md §11: the model cannot dilate and its projection keeps the sand
 // incompressible, so a collapsing column (0.2 x 0.1 m, φ = 20°, the column_collapse quick grid of
 // FLIP: 5 cells tall) keeps its volume, the area inside its outline (sand_volume), within 2 % of

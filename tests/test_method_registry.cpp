@@ -63,6 +63,13 @@ json small_dem_case_json() {
   return doc;
 }
 
+/// The small dam break with a sand block beside the water, run by MPM (its "methods"/"mpm").
+json small_mpm_case_json() {
+  json doc = small_flip_case_json();
+  doc["methods"] = {{"mpm", {{"cell_size", 2.0}, {"cfl", 0.4}}}};
+  return doc;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(method_registry)
@@ -166,7 +173,7 @@ BOOST_AUTO_TEST_CASE(an_unknown_method_is_rejected_with_the_case_file_and_json_p
   } catch (const InputError& e) {
     BOOST_TEST(e.json_path() == "/methods/no_such_method");
   }
-  BOOST_TEST(method_names() == (std::vector<std::string>{"sph", "flip", "dem"}));
+  BOOST_TEST(method_names() == (std::vector<std::string>{"sph", "flip", "dem", "mpm"}));
 }
 
 BOOST_AUTO_TEST_CASE(method_flag_must_name_a_method_the_case_supports) {
@@ -286,6 +293,69 @@ BOOST_AUTO_TEST_CASE(an_unknown_flip_parameter_is_rejected_with_its_path) {
   } catch (const InputError& e) {
     BOOST_TEST(e.json_path() == "/methods/flip/cell_size");
   }
+}
+
+// MPM through the seam (solver/mpm/mpm_method.hpp): water and sand blocks become MPM particles at
+// the case spacing, the run steps in substeps, its view shows what its checksum hashes, mass is
+// exact, the water under the column is at about ρ g H, it times its four stages and is bitwise the
+// same on one and two threads; a misspelt key of "methods"/"mpm" is named with its path.
+BOOST_AUTO_TEST_CASE(an_mpm_run_built_through_the_registry_steps) {
+  const CaseSpec spec = with_method(load_case(write_case(small_mpm_case_json())), "mpm");
+  const int saved = omp_get_max_threads();
+  std::string checksum[2];
+  for (const int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    const std::unique_ptr<Method<2>> run = make_method<2>(spec, 0.01);
+    BOOST_TEST(run->name() == "mpm");
+    BOOST_TEST(!run->writes_checkpoints());
+    BOOST_TEST(!method_writes_checkpoints("mpm"));
+    const ParticleView<2> start = run->particles();
+    BOOST_TEST(start.size() == 200u + 100u);
+    double mass0 = 0.0;
+    for (std::size_t i = 0; i < start.size(); ++i) mass0 += start.m[i];
+    BOOST_TEST(mass0 == 0.1 * 0.2 * 1000.0 + 0.1 * 0.1 * 2650.0, boost::test_tools::tolerance(1e-12));
+    for (int k = 0; k < 40; ++k) run->step();
+    const ParticleView<2> view = run->particles();
+    for (std::size_t n : {view.v.size(), view.m.size(), view.phase.size(), view.pressure.size(), view.density.size(),
+                          view.support.size(), view.saturation.size()})
+      BOOST_TEST(n == view.size());
+    BOOST_TEST(view_checksum(view) == run->checksum());
+    double mass = 0.0, p_max = 0.0;
+    for (std::size_t i = 0; i < view.size(); ++i) {
+      mass += view.m[i];
+      if (view.phase_of(i) == Phase::Water) p_max = std::max(p_max, view.pressure[i]);
+    }
+    BOOST_TEST(mass == mass0);
+    BOOST_TEST(p_max > 500.0);
+    BOOST_TEST(p_max < 4000.0);
+    std::vector<std::string> stages;
+    long substeps = 0;
+    for (const StageTime& st : run->stage_times()) {
+      stages.push_back(st.name);
+      substeps += st.count;
+    }
+    BOOST_TEST(stages == (std::vector<std::string>{"transfer", "stress", "grid", "exchange"}));
+    BOOST_TEST(substeps >= 40);
+    BOOST_TEST(run->vtu_frame().find("Name=\"saturation\"") != std::string::npos);
+    checksum[threads - 1] = run->checksum();
+  }
+  omp_set_num_threads(saved);
+  BOOST_TEST(checksum[0] == checksum[1]);
+  json doc = small_mpm_case_json();
+  doc["methods"]["mpm"]["porosty"] = 0.4;
+  const std::string file = write_case(doc);
+  try {
+    check_method(load_case(file));
+    BOOST_ERROR("an unknown MPM key was accepted");
+  } catch (const InputError& e) {
+    BOOST_TEST(e.file() == file);
+    BOOST_TEST(e.json_path() == "/methods/mpm/porosty");
+  }
+  const std::string out = test::fresh_path("method_out");
+  const test::ProcessResult r = test::run_sandcastle({"run", file, "--out", out, "--method", "mpm"}, 30.0);
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.err.find("/methods/mpm/porosty") != std::string::npos, r.err);
+  BOOST_TEST(!fs::exists(out));
 }
 
 // DEM through the seam (solver/dem/dem_method.hpp): the column packed in its mould weighs ρ L H, the grains fall onto the floor and push no deeper than

@@ -2,8 +2,9 @@
 # Installs the Debian 12 packages sandcastle needs, if any is missing (run as root).
 set -euo pipefail
 packages=(build-essential cmake libeigen3-dev libboost-test-dev libgsl-dev nlohmann-json3-dev libcli11-dev
-          libtinyobjloader-dev libopenvdb-dev libboost-iostreams-dev
+          libtinyobjloader-dev libopenvdb-dev libboost-iostreams-dev libopenmpi-dev openmpi-bin
           clang libclang-rt-14-dev libomp-14-dev
+          libpugixml-dev libpng-dev povray ffmpeg
           python3 python3-matplotlib python3-numpy git)
 missing=()
 for p in "${packages[@]}"; do

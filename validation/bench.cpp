@@ -13,6 +13,7 @@
 #include "io/atomic_file.hpp"
 #include "method/registry.hpp"
 #include "observer.hpp"
+#include "probe.hpp"
 #include "progress.hpp"
 #include "runner.hpp"
 
@@ -170,6 +171,13 @@ void print_table(const json& entries) {
 }  // namespace
 
 int bench(const BenchOptions& opt) {
+  if (opt.probe) {
+    const std::vector<ProbeRow> rows = run_probe(opt.threads);
+    fs::create_directories(opt.out_dir);
+    write_file_atomic(opt.out_dir + "/probe.json", probe_document(rows).dump(2) + "\n");
+    std::cout << probe_table(rows);
+    return kSuccess;
+  }
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const std::string cases_dir = opt.cases_dir.empty() ? data_path("cases") : opt.cases_dir;
   const std::vector<std::string>& scenes = opt.scenes.empty() ? default_scenes : opt.scenes;

@@ -1,5 +1,6 @@
-// The `sandcastle` command: run one case, or validate the suite. Exit codes: 0 success, 1 a case
-// failed its gate, 2 bad input (file, JSON path and rule on stderr), 3 the simulation blew up.
+// The `sandcastle` command: run one case, validate the suite, render a run's frames. Exit codes: 0
+// success, 1 a case failed its gate, 2 bad input (file, JSON path and rule on stderr), 3 the
+// simulation blew up, 4 a program `render` needs is missing or failed.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
@@ -10,8 +11,10 @@
 #include "io/atomic_file.hpp"
 #include "method/registry.hpp"
 #include "bench.hpp"
+#include "render/render.hpp"
 #include "report.hpp"
 #include "runner.hpp"
+#include "sweep.hpp"
 #include "scene/scene_builder.hpp"
 
 namespace {
@@ -78,7 +81,18 @@ void add_methods_option(CLI::App* app, std::vector<std::string>& methods) {
 
 }  // namespace
 
+/// Only `validate` spreads over MPI ranks; any other command under `mpirun -n N` (N > 1) would run
+/// N copies writing the same files, so it stops before anything is written. True when stopped.
+bool sweep_ranks_guard(bool validating) {
+  if (validating || sc::sweep_ranks() == 1) return false;
+  if (sc::sweep_rank() == 0)
+    std::cerr << "error: only `sandcastle validate` runs over several MPI ranks (this is rank 0 of "
+              << sc::sweep_ranks() << "); run the other commands as one process\n";
+  return true;
+}
+
 int main(int argc, char** argv) {
+  const sc::MpiSession mpi(argc, argv);  // MPI only under mpirun (validation/sweep.hpp)
   CLI::App app{"sandcastle: particle-based sand + water simulation and its validation suite"};
   app.require_subcommand(1);
   app.fallthrough();  // --root may follow the subcommand
@@ -119,6 +133,10 @@ int main(int argc, char** argv) {
   val->add_option("--max-particles", vopt.max_particles, max_help)->check(CLI::PositiveNumber);
   val->add_flag("--errata", vopt.errata,
                 "also run each erratum's printed form on the cases it affects (errata-impact table)");
+  val->add_flag("--convergence", vopt.convergence,
+                "instead of a tier, run the cases' convergence studies (\"convergence\" in the case file): "
+                "errors and observed orders against the spacing, log-log plots")
+      ->excludes(val->get_option("--errata"));
   add_methods_option(val, vopt.methods);
 
   sc::ValidateOptions bopt;
@@ -154,9 +172,34 @@ int main(int argc, char** argv) {
   bench->add_option("--cases-dir", benchopt.cases_dir, "folder of cases (default: the repository's cases/)");
   bench->add_option("--method", benchopt.method, "simulation method, overriding each scene's \"method\" (one the scene supports)");
   bench->add_option("--max-particles", benchopt.max_particles, max_help)->check(CLI::PositiveNumber);
+  bench->add_flag("--probe", benchopt.probe,
+                  "instead of scenes, measure memory bandwidth (STREAM triad) and double-precision throughput at "
+                  "1 .. --threads threads: DIR/probe.json")
+      ->excludes("--scene");
+
+  sc::render::RenderOptions ropt;
+  CLI::App* rnd = app.add_subcommand("render", "Pictures of a run's frames (POV-Ray surfaces, 2-D particle snapshots), "
+                                               "a filmstrip and a video (docs/render.md)");
+  rnd->add_option("run_dir", ropt.run_dir, "folder of a `sandcastle run` (with frames.pvd)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  rnd->add_option("--out", ropt.out_dir, "output folder")->required()->check(output_folder);
+  rnd->add_option("--case", ropt.case_file, "the run's case file (default: the case named in RUN_DIR/series.json)")
+      ->check(CLI::ExistingFile);
+  rnd->add_option("--filmstrip", ropt.frames,
+                  "write DIR/filmstrip.png of these frames side by side (comma-separated; none given: the case's "
+                  "render.filmstrip, else first, middle, last)")
+      ->expected(0, -1)
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  rnd->add_flag("--video", ropt.video, "write DIR/video.mp4 of every frame (ffmpeg, H.264)");
+  rnd->add_option("--jobs", ropt.jobs, "frames rendered at a time (default 2)")->check(CLI::PositiveNumber);
 
   try {
     app.parse(argc, argv);
+    const CLI::Option* filmstrip = rnd->get_option("--filmstrip");
+    ropt.filmstrip = filmstrip->count() > 0;
+    if (filmstrip->results() == std::vector<std::string>{""}) ropt.frames.clear();  // a bare --filmstrip: CLI11 reads "" as 0
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? 0 : sc::kBadInput;
@@ -164,18 +207,20 @@ int main(int argc, char** argv) {
   try {
     sc::set_data_root(root);
     if (bopt.out_dir.empty()) bopt.out_dir = sc::data_path("reports/baseline-run");
+    if (sweep_ranks_guard(val->parsed())) return sc::kBadInput;
     if (*run)
       return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from, run_method, max_particles,
                          run_surfaces);
     if (*bl) return bless_command(bopt, bless_from);
     if (*cmp) return sc::compare_runs(compare_a, compare_b, compare_out, compare_plots);
     if (*bench) return sc::bench(benchopt);
+    if (*rnd) return sc::render::render_run(ropt);
     return sc::validate(vopt);
   } catch (const sc::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return sc::kBadInput;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
-    return 4;
+    return sc::kInternalError;
   }
 }

@@ -46,6 +46,7 @@ struct Curve {
 struct Plot {
   std::string file, title, x_label, y_label;
   std::vector<Curve> curves;
+  bool log_log = false;  ///< both axes logarithmic (convergence plots)
 };
 
 struct ObserverResult {

@@ -9,6 +9,11 @@ Progress::Progress(std::string label, double end_time)
     : label_(std::move(label)), end_(end_time), tty_(::isatty(2) != 0),
       start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
 
+Progress::Progress(std::string label, long total, std::string unit)
+    : Progress(std::move(label), static_cast<double>(total)) {
+  unit_ = std::move(unit);
+}
+
 void Progress::update(double time, long steps) {
   const auto now = std::chrono::steady_clock::now();
   if (tty_) {
@@ -30,14 +35,17 @@ void Progress::draw(double time, long steps, bool final) {
   const double fraction = std::min(1.0, time / end_);
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+  char where[64];
+  if (unit_.empty()) std::snprintf(where, sizeof where, "t=%.4f s  %ld steps", time, steps);
+  else std::snprintf(where, sizeof where, "%ld of %.0f %s", steps, end_, unit_.c_str());
   if (tty_) {
     const int width = 30, filled = static_cast<int>(fraction * width);
-    std::fprintf(stderr, "\r%-22s [%.*s%*s] %3.0f%%  t=%.4f s  %ld steps  %.1f s (eta %.0f s)%s", label_.c_str(),
-                 filled, "##############################", width - filled, "", 100.0 * fraction, time, steps,
-                 elapsed, eta, final ? "\n" : "");
+    std::fprintf(stderr, "\r%-22s [%.*s%*s] %3.0f%%  %s  %.1f s (eta %.0f s)%s", label_.c_str(), filled,
+                 "##############################", width - filled, "", 100.0 * fraction, where, elapsed, eta,
+                 final ? "\n" : "");
   } else {
-    std::fprintf(stderr, "%s: %3.0f%%  t=%.4f s  %ld steps  %.1f s%s\n", label_.c_str(), 100.0 * fraction, time,
-                 steps, elapsed, final ? "  done" : "");
+    std::fprintf(stderr, "%s: %3.0f%%  %s  %.1f s%s\n", label_.c_str(), 100.0 * fraction, where, elapsed,
+                 final ? "  done" : "");
   }
   std::fflush(stderr);
 }

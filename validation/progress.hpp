@@ -1,4 +1,5 @@
-// Progress of a long run: a bar redrawn in place on a terminal, a line every 10 % otherwise.
+// Progress of a long run, or of a count of items (`sandcastle render`'s frames): a bar redrawn in
+// place on a terminal, a line every 10 % otherwise.
 #pragma once
 #include <chrono>
 #include <string>
@@ -8,6 +9,8 @@ namespace sc {
 class Progress {
  public:
   Progress(std::string label, double end_time);
+  /// Counts `total` items named `unit` ("frames"): update(done, done) after each.
+  Progress(std::string label, long total, std::string unit);
   void update(double time, long steps);
   void done(double time, long steps);
 
@@ -15,6 +18,7 @@ class Progress {
   void draw(double time, long steps, bool final);
   std::string label_;
   double end_;
+  std::string unit_;  ///< empty: a run, drawn as time and steps
   bool tty_;
   int last_decile_ = -1;
   std::chrono::steady_clock::time_point start_, last_draw_;

@@ -23,13 +23,13 @@ namespace fs = std::filesystem;
 
 namespace sc {
 
-namespace {
-
-std::string surface_name(Phase phase, std::size_t frame) {
+std::string surface_file_name(Phase phase, std::size_t frame) {
   char name[48];
   std::snprintf(name, sizeof name, "surface_%s_%05zu.vtp", std::string(phase_name(phase)).c_str(), frame);
   return name;
 }
+
+namespace {
 
 /// surface_<phase>_NNNNN.vtp of frame k: the surface of the particles of each phase of water and
 /// sand that has any, for the spacing dx (surface/surface_mesh.hpp); the sand's carries the
@@ -47,7 +47,7 @@ void write_surfaces(const ParticleView<3>& view, double dx, const std::string& d
     if (x.empty()) continue;
     surface::SurfaceMesh mesh = surface::reconstruct_surface(x, {.spacing = dx});
     if (wet) surface::attach_saturation(mesh, x, saturation, {.spacing = dx});
-    write_file_atomic(dir + "/" + surface_name(phase, frame), surface::vtp_document(mesh));
+    write_file_atomic(dir + "/" + surface_file_name(phase, frame), surface::vtp_document(mesh));
   }
 }
 
@@ -69,7 +69,7 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   const auto surfaces_of = [&](std::size_t frame) {  // the surface files written beside a frame
     std::vector<std::string> files;
     for (const Phase phase : {Phase::Water, Phase::Sand})
-      if (fs::exists(settings.out_dir + "/" + surface_name(phase, frame))) files.push_back(surface_name(phase, frame));
+      if (fs::exists(settings.out_dir + "/" + surface_file_name(phase, frame))) files.push_back(surface_file_name(phase, frame));
     return files;
   };
   auto write_frame = [&]() {
@@ -169,6 +169,7 @@ void write_series_file(const std::string& path, const std::string& case_name, co
     json curves = json::array();
     for (const Curve& c : p.curves) curves.push_back({{"series", c.series}, {"label", c.label}, {"style", c.style}});
     plots.push_back({{"file", p.file}, {"title", p.title}, {"x_label", p.x_label}, {"y_label", p.y_label}, {"curves", curves}});
+    if (p.log_log) plots.back()["log_log"] = true;
   }
   write_file_atomic(path, json{{"case", case_name}, {"series", series}, {"plots", plots}}.dump(1) + "\n");
 }

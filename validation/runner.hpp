@@ -10,8 +10,9 @@
 
 namespace sc {
 
-/// Exit codes of the command (docs/architecture.md "Contracts").
-enum ExitCode { kSuccess = 0, kCaseFailed = 1, kBadInput = 2, kBlowUp = 3 };
+/// Exit codes of the command (docs/architecture.md "Contracts"); kToolMissing: a program `render`
+/// runs (povray, ffmpeg, python3-matplotlib) is missing or failed.
+enum ExitCode { kSuccess = 0, kCaseFailed = 1, kBadInput = 2, kBlowUp = 3, kInternalError = 4, kToolMissing = 5 };
 
 /// One simulation of a case at one spacing.
 struct RunResult {
@@ -53,6 +54,9 @@ RunResult run_single(const CaseSpec& spec, double dx, const RunSettings& setting
 /// starts twins of its own. Errors as run_single.
 RunResult run_simulation(const CaseSpec& spec, double dx, const RunSettings& settings);
 
+/// The surface file of frame k of phase p that `run --surface` writes: surface_<phase>_NNNNN.vtp.
+std::string surface_file_name(Phase phase, std::size_t frame);
+
 /// Writes series.json for a case (its series and plot descriptions).
 void write_series_file(const std::string& path, const std::string& case_name, const ObserverResult& r);
 
@@ -65,6 +69,7 @@ struct ValidateOptions {
   bool plots = true;
   double max_particles = kDefaultMaxParticles;     ///< estimated particles above which a run is refused (--max-particles)
   bool errata = false;             ///< also run each erratum's printed form on its cases (--errata; validation/errata.hpp)
+  bool convergence = false;        ///< run the cases' convergence studies instead of a tier (--convergence; validation/convergence.hpp)
   /// Methods to run each case with (--method), each one the case supports, in this order; empty:
   /// the case's own "method"; {"all"}: the tier's "methods" where it lists them, else the case's own
   /// method, then every one under its "methods".

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "baseline.hpp"
+#include "convergence.hpp"
 #include "data_root.hpp"
 #include "errata.hpp"
 #include "io/atomic_file.hpp"
@@ -15,6 +16,7 @@
 #include "report_scripts.hpp"
 #include "runner.hpp"
 #include "scene/scene_builder.hpp"
+#include "sweep.hpp"
 
 namespace fs = std::filesystem;
 
@@ -93,6 +95,86 @@ void run_plot_script(const std::string& out_dir) {
     std::cerr << "warning: plotting failed (needs python3-matplotlib); report.json and series are complete\n";
 }
 
+/// The case files of the run: every case of the folder, or those named with --case (in that order).
+std::vector<std::string> case_files(const std::string& cases_dir, const ValidateOptions& opt) {
+  if (opt.cases.empty()) return discover_cases(cases_dir);
+  std::vector<std::string> chosen;
+  for (const std::string& name : opt.cases) {
+    const std::string file = cases_dir + "/" + name + "/case.json";
+    if (!fs::exists(file)) throw InputError(file, "", "no case named '" + name + "' (see " + cases_dir + ")");
+    chosen.push_back(file);
+  }
+  return chosen;
+}
+
+/// The expected work of a case in the tier, for handing out the longest first: particles times
+/// steps at the largest step, summed over its spacings and methods (0 for a case that does not load
+/// or is not in the tier: it ends at once).
+double expected_cost(const std::string& file, const ValidateOptions& opt) {
+  try {
+    const CaseSpec spec = load_case(file);
+    const auto tier = spec.tiers.find(opt.tier);
+    if (tier == spec.tiers.end()) return 0.0;
+    const double end = tier->second.end_time > 0.0 ? tier->second.end_time : spec.end_time;
+    double cost = 0.0;
+    for (const double dx : tier->second.spacings) cost += estimate_particles(spec, dx) * end / spec.dt_max;
+    return cost * static_cast<double>(methods_to_run(spec, opt).size());
+  } catch (const std::exception&) {
+    return 0.0;
+  }
+}
+
+/// One case of the sweep, run by every method asked of it: its report entries, its methods
+/// comparison and the exit code it asks for, as JSON text. Whatever goes wrong (bad input, an
+/// unexpected error) becomes the case's error entry: a sweep never loses a case.
+std::string validate_file(const std::string& file, const ValidateOptions& opt) {
+  const std::string name = fs::path(file).parent_path().filename().string();
+  std::vector<json> entries, comparisons;
+  int exit_code = kSuccess;
+  try {
+    const CaseSpec spec = load_case(file);
+    if (spec.tiers.count(opt.tier)) validate_methods(spec, opt, entries, comparisons, exit_code);  // else not in this tier
+  } catch (const InputError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    entries.push_back(error_entry(name, opt.tier, e.what()));
+    exit_code = std::max(exit_code, static_cast<int>(kBadInput));
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << name << ": " << e.what() << "\n";
+    entries.push_back(error_entry(name, opt.tier, e.what()));
+    exit_code = std::max(exit_code, static_cast<int>(kInternalError));
+  }
+  return json{{"entries", entries}, {"comparisons", comparisons}, {"exit_code", exit_code}}.dump();
+}
+
+/// The cases of a tier as a sweep: each case file one task; on rank 0 their entries, comparisons
+/// and exit code in file order, report.json rewritten as cases finish. False on the other ranks.
+bool sweep_cases(const std::vector<std::string>& files, const ValidateOptions& opt, std::vector<json>& entries,
+                 std::vector<json>& comparisons, int& exit_code) {
+  std::vector<double> costs;
+  for (const std::string& file : files) costs.push_back(expected_cost(file, opt));
+  const auto collect = [&](const std::vector<std::string>& results) {
+    entries.clear();
+    comparisons.clear();
+    exit_code = kSuccess;
+    for (const std::string& text : results) {
+      if (text.empty()) continue;  // not known yet on this rank
+      const json r = json::parse(text);
+      for (const json& e : r.at("entries")) entries.push_back(e);
+      for (const json& c : r.at("comparisons")) comparisons.push_back(c);
+      exit_code = std::max(exit_code, r.at("exit_code").get<int>());
+    }
+  };
+  const std::vector<std::string> results = sweep(
+      costs, [&](std::size_t i) { return validate_file(files[i], opt); },
+      [&](const std::vector<std::string>& known) {  // the report so far, as cases finish
+        collect(known);
+        write_file_atomic(opt.out_dir + "/report.json", report_document(entries).dump(2) + "\n");
+      });
+  if (sweep_rank() != 0) return false;
+  collect(results);
+  return true;
+}
+
 }  // namespace
 
 std::vector<std::string> methods_to_run(const CaseSpec& spec, const ValidateOptions& options) {
@@ -116,42 +198,31 @@ std::string run_id(const CaseSpec& spec, const std::string& method) {
 
 int validate(const ValidateOptions& opt) {
   const std::string cases_dir = opt.cases_dir.empty() ? data_path("cases") : opt.cases_dir;
-  std::vector<std::string> files = discover_cases(cases_dir);
-  if (!opt.cases.empty()) {
-    std::vector<std::string> chosen;
-    for (const std::string& name : opt.cases) {
-      const std::string file = cases_dir + "/" + name + "/case.json";
-      if (!fs::exists(file)) throw InputError(file, "", "no case named '" + name + "' (see " + cases_dir + ")");
-      chosen.push_back(file);
-    }
-    files = chosen;
-  }
-  fs::create_directories(opt.out_dir);
-  std::vector<json> entries, comparisons;
+  const std::vector<std::string> files = case_files(cases_dir, opt);
+  if (sweep_rank() == 0) fs::create_directories(opt.out_dir);
   int exit_code = kSuccess;
-  for (const std::string& file : files) {
-    const std::string name = fs::path(file).parent_path().filename().string();
-    try {
-      const CaseSpec spec = load_case(file);
-      if (!spec.tiers.count(opt.tier)) continue;  // a scene that is not part of this tier
-      validate_methods(spec, opt, entries, comparisons, exit_code);
-    } catch (const InputError& e) {
-      std::cerr << "error: " << e.what() << "\n";
-      entries.push_back(error_entry(name, opt.tier, e.what()));
-      exit_code = kBadInput;
-    }
-    write_file_atomic(opt.out_dir + "/report.json", report_document(entries).dump(2) + "\n");
+  json report;
+  if (opt.convergence) {
+    const json studies = run_convergence(files, opt, exit_code);
+    if (sweep_rank() != 0) return broadcast_from_root(kSuccess);
+    broadcast_from_root(exit_code);
+    report = report_document({});
+    report["convergence"] = studies;
+  } else {
+    std::vector<json> entries, comparisons;
+    if (!sweep_cases(files, opt, entries, comparisons, exit_code)) return broadcast_from_root(kSuccess);
+    broadcast_from_root(exit_code);
+    report = report_document(entries);
+    if (!opt.methods.empty()) report["methods"] = comparisons;
+    if (opt.errata) report["errata"] = run_errata(opt, cases_dir, entries);
   }
-  json report = report_document(entries);
-  if (!opt.methods.empty()) report["methods"] = comparisons;
-  if (opt.errata) report["errata"] = run_errata(opt, cases_dir, entries);
   write_file_atomic(opt.out_dir + "/report.json", report.dump(2) + "\n");
   if (opt.plots) {
     run_plot_script(opt.out_dir);
     run_report_script("html_report.py", {opt.out_dir});  // report.html, with the plots embedded
   }
-  const std::string summary =
-      summary_markdown(report) + methods_markdown(report) + baseline_markdown(report) + errata_markdown(report);
+  const std::string summary = summary_markdown(report) + methods_markdown(report) + baseline_markdown(report) +
+                              errata_markdown(report) + convergence_markdown(report);
   write_file_atomic(opt.out_dir + "/summary.md", summary);
   std::cout << summary;
   return exit_code;

@@ -62,6 +62,22 @@ std::vector<std::string> read_tier_methods(JsonObject& t, const CaseSpec& c) {
   return names;
 }
 
+ConvergenceSpec read_convergence(JsonObject o) {
+  ConvergenceSpec spec;
+  spec.spacings = o.numbers("spacings");
+  if (spec.spacings.size() < 2) o.fail("spacings", "a study needs at least two spacings");
+  for (std::size_t k = 0; k < spec.spacings.size(); ++k) {
+    if (!(spec.spacings[k] > 0.0)) o.fail("spacings", "every spacing must be > 0");
+    if (k > 0 && !(spec.spacings[k] < spec.spacings[k - 1])) o.fail("spacings", "must be listed coarse to fine, each smaller");
+  }
+  JsonObject metrics = o.object("metrics");
+  for (const auto& [name, value] : o.raw("metrics").items()) spec.orders[name] = metrics.positive(name);
+  if (spec.orders.empty()) o.fail("metrics", "must name at least one metric with the order it should reach");
+  metrics.finish();
+  o.finish();
+  return spec;
+}
+
 void read_tiers(JsonObject o, CaseSpec& c) {
   for (const char* tier : {"quick", "full"}) {
     if (std::string(tier) == "quick" && !o.has(tier)) continue;  // a scene outside the quick (CI) suite
@@ -161,9 +177,11 @@ CaseSpec load_case(const json& doc, const std::string& path) {
       if (!params.is_object()) o.fail("methods", "the parameters of method \"" + name + "\" must be an object");
   }
   c.validation = o.has("validation") ? o.raw("validation") : json::object();
+  c.render = o.has("render") ? o.raw("render") : json::object();
   if (o.has("regression")) c.regression = read_regression(o.object("regression"));
   c.parameters_hash = parameters_hash(doc);
   read_tiers(o.object("tiers"), c);
+  if (o.has("convergence")) c.convergence = read_convergence(o.object("convergence"));
   o.finish();
   double largest_spacing = 0.0;
   for (const auto& [name, tier] : c.tiers)

@@ -2,7 +2,7 @@
 // The format is documented in cases/README.md; every field is checked on load. Each physics folder
 // owns its section's parameters, reader and derived values (water/water_section, sand/sand_params,
 // porous/porous_setup, adaptive/adaptivity); this file reads the case-level keys (domain, time,
-// blocks, meshes, tank, methods, validation, tiers) and calls the section readers.
+// blocks, meshes, tank, methods, validation, render, tiers) and calls the section readers.
 #pragma once
 #include <map>
 #include <optional>
@@ -27,6 +27,14 @@ struct TierSpec {
   /// The methods `validate --method all` runs in this tier (empty: every method the case supports).
   /// A method that fails the case's gates at this tier's spacings runs in the full tier only.
   std::vector<std::string> methods;
+};
+
+/// A convergence study of a case ("convergence"; `sandcastle validate --convergence`): the case run
+/// at each of `spacings`, and for each metric of `orders` (an error against the case's reference)
+/// the order the method should reach, err ∝ dx^order (validation/convergence.hpp).
+struct ConvergenceSpec {
+  std::vector<double> spacings;
+  std::map<std::string, double> orders;
 };
 
 struct CaseSpec {
@@ -54,9 +62,11 @@ struct CaseSpec {
   std::vector<MeshSpec> meshes;  ///< closed OBJ meshes filled with particles (3-D only)
   std::optional<TankSpec> tank;
   json validation;              ///< checked by the observer named in it (validation/observers)
+  json render;                  ///< camera, lights and filmstrip of `sandcastle render`, checked there (validation/render)
   RegressionSpec regression;    ///< limits of the comparison with the baseline
   std::string parameters_hash;  ///< of the canonical case JSON (io/regression_spec.hpp)
   std::map<std::string, TierSpec> tiers;
+  std::optional<ConvergenceSpec> convergence;
   /// The method a run uses when none is asked for ("method", default "sph"; solver/method/).
   std::string method = "sph";
   /// "methods": {NAME: {...that method's own parameters...}}: the methods the case supports besides

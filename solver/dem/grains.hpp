@@ -87,7 +87,7 @@ struct Grains {
 };
 
 /// Stable step of the explicit contact integration: a tenth of √(m/k) of the lightest grain,
-/// i.e. about 1/30 of the contact's natural period π√(m/k).
+/// i.e. about 1/31 of an undamped contact's duration π√(m/k) (half its natural period 2π√(m/k)).
 template <int D>
 double stable_step(const Grains<D>& g, const Params& p) {
   double m = INFINITY;

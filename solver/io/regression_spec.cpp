@@ -82,6 +82,8 @@ std::string parameters_hash(const json& case_document) {
   json j = without_notes(case_document);
   j.erase("description");
   j.erase("regression");
+  j.erase("convergence");  // the spacings of a study: each run records its own spacing
+  j.erase("render");  // how a run is drawn (validation/render) is no parameter of it
   j.erase("methods");  // other methods' parameters; a run by one of them adds its own (method/registry.cpp)
   if (j.contains("tiers"))  // which methods a tier runs is no parameter of any run
     for (auto& [name, tier] : j["tiers"].items())

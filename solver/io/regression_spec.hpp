@@ -32,8 +32,8 @@ struct RegressionSpec {
 RegressionSpec read_regression(JsonObject o);
 
 /// FNV-1a 64 of the case file's canonical JSON (keys sorted, no whitespace), leaving out what
-/// does not change a run: "description", "regression", "comment", keys starting with '_', and
-/// "methods" (the parameters of methods other than the case's own: with_method in
+/// does not change a run: "description", "regression", "convergence" (a study's spacings; each
+/// run records its own), "comment", keys starting with '_', and "methods" (the parameters of methods other than the case's own: with_method in
 /// method/registry.hpp mixes in those of the method a run uses).
 /// 16 hex digits.
 std::string parameters_hash(const json& case_document);

@@ -5,6 +5,7 @@
 #include "dem/dem_method.hpp"
 #include "flip/flip_method.hpp"
 #include "io/checkpoint.hpp"
+#include "mpm/mpm_method.hpp"
 #include "simulator/sph_method.hpp"
 
 namespace sc {
@@ -38,6 +39,10 @@ void check_dem(const CaseSpec& spec) {
   read_dem_params(spec);
   check_blocks_at_rest(spec, "dem");
 }
+void check_mpm(const CaseSpec& spec) {
+  read_mpm_params(spec);
+  check_blocks_at_rest(spec, "mpm");
+}
 
 /// Every method of this build. A new method adds its line here (and its own folder under solver/).
 template <int D>
@@ -46,6 +51,7 @@ const std::vector<Entry<D>>& entries() {
       {"sph", make_sph_method<D>, resume_sph_method<D>, nullptr},
       {"flip", make_flip_method<D>, nullptr, check_flip},
       {"dem", make_dem_method<D>, nullptr, check_dem},
+      {"mpm", make_mpm_method<D>, nullptr, check_mpm},
   };
   return table;
 }

@@ -42,17 +42,44 @@ std::vector<Origin> leaf_origins(std::span<const Vec<3>> x, double h, double rea
 }
 
 /// φ of the particles at every voxel of the leaf at `origin`; a voxel with no particle within
-/// reach keeps the background (outside) and stays inactive.
+/// reach keeps the background (outside) and stays inactive. Gathered per leaf: the particles near
+/// the leaf once (the cells within reach of its box, in the grid's fixed order), then each of them
+/// added to the averages of the leaf's voxels within its reach, so a voxel's sums run over the
+/// particles in that order whatever the thread.
 std::unique_ptr<Leaf> sample_leaf(const Origin& origin, const CellGrid<3>& cells, std::span<const Vec<3>> x, double h,
                                   double radius, double reach) {
+  constexpr int n = static_cast<int>(Leaf::DIM);
   auto leaf = std::make_unique<Leaf>(openvdb::Coord(origin[0], origin[1], origin[2]), reach, false);
-  for (openvdb::Index n = 0; n < Leaf::SIZE; ++n) {
-    const openvdb::Coord ijk = leaf->offsetToGlobalCoord(n);
-    const Vec<3> at(ijk.x() * h, ijk.y() * h, ijk.z() * h);
-    SurfaceAverage<3> average(at, reach);
-    cells.for_each_near(at, [&](std::uint32_t j) { average.add(x[j], radius); }, 2);
-    if (!average.empty()) leaf->setValueOn(n, average.phi());
+  const double half = 0.5 * (n - 1) * h;  // from the leaf's centre to its outer voxels, per axis
+  const Vec<3> centre(origin[0] * h + half, origin[1] * h + half, origin[2] * h + half);
+  const int rings = static_cast<int>(std::ceil((std::sqrt(3.0) * half + reach) / (0.5 * reach)));
+  std::vector<SurfaceAverage<3>> averages;
+  averages.reserve(Leaf::SIZE);
+  for (openvdb::Index v = 0; v < Leaf::SIZE; ++v) {
+    const openvdb::Coord ijk = leaf->offsetToGlobalCoord(v);
+    averages.emplace_back(Vec<3>(ijk.x() * h, ijk.y() * h, ijk.z() * h), reach);
   }
+  // The leaf's voxels along an axis whose distance to x_d is below reach: [first, last].
+  const auto span = [&](int d, double xd, double r) {
+    const int first = std::max(0, static_cast<int>(std::ceil((xd - r) / h)) - origin[d]);
+    const int last = std::min(n - 1, static_cast<int>(std::floor((xd + r) / h)) - origin[d]);
+    return std::pair{first, last};
+  };
+  cells.for_each_near(centre, [&](std::uint32_t j) {
+    const Vec<3>& p = x[j];
+    const auto [i0, i1] = span(0, p[0], reach);
+    for (int i = i0; i <= i1; ++i) {
+      const double dx = (origin[0] + i) * h - p[0], ry = std::sqrt(std::max(0.0, reach * reach - dx * dx));
+      const auto [j0, j1] = span(1, p[1], ry);
+      for (int k = j0; k <= j1; ++k) {
+        const double dy = (origin[1] + k) * h - p[1], rz = std::sqrt(std::max(0.0, ry * ry - dy * dy));
+        const auto [l0, l1] = span(2, p[2], rz);
+        for (int l = l0; l <= l1; ++l) averages[static_cast<std::size_t>((i * n + k) * n + l)].add(p, radius);
+      }
+    }
+  }, rings);
+  for (openvdb::Index v = 0; v < Leaf::SIZE; ++v)
+    if (!averages[v].empty()) leaf->setValueOn(v, averages[v].phi());
   return leaf;
 }
 

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace sc::test {
@@ -40,11 +41,12 @@ inline std::string read_text(const std::string& path) {
   return buf.str();
 }
 
-/// A running `sandcastle args...` with `env` ("NAME=value") added to the environment.
+/// A running `program args...` (default: sandcastle) with `env` ("NAME=value") added to the environment.
 class Child {
  public:
-  Child(const std::vector<std::string>& args, const std::vector<std::string>& env)
-      : out_(fresh_path("stdout")), err_(fresh_path("stderr")) {
+  Child(const std::vector<std::string>& args, const std::vector<std::string>& env,
+        std::string program = SANDCASTLE_BINARY)
+      : program_(std::move(program)), out_(fresh_path("stdout")), err_(fresh_path("stderr")) {
     std::fflush(nullptr);  // else the child's freopen flushes the parent's pending output a second time
     pid_ = ::fork();
     if (pid_ == 0) exec(args, env);
@@ -85,13 +87,14 @@ class Child {
   [[noreturn]] void exec(const std::vector<std::string>& args, const std::vector<std::string>& env) const {
     for (const std::string& e : env) ::putenv(const_cast<char*>(e.c_str()));
     if (!std::freopen(out_.c_str(), "w", stdout) || !std::freopen(err_.c_str(), "w", stderr)) ::_exit(126);
-    std::vector<char*> argv{const_cast<char*>(SANDCASTLE_BINARY)};
+    std::vector<char*> argv{const_cast<char*>(program_.c_str())};
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
-    ::execv(SANDCASTLE_BINARY, argv.data());
+    ::execv(program_.c_str(), argv.data());
     ::_exit(127);
   }
 
+  std::string program_;
   pid_t pid_ = -1;
   bool reaped_ = false;
   std::string out_, err_;

@@ -33,6 +33,11 @@ def vtu_arrays(path):
 
 def contact_parameters(case, dx, mass, gravity):
     own = case["methods"]["dem"]
+    friction = own.get("friction", 0.5)
+    if own.get("wall_friction", friction) != friction:
+        # One atom type: LIGGGHTS' walls take the grains' coefficientFriction.
+        sys.exit("make_input.py: the peer input gives the walls the grains' friction; "
+                 "this case sets methods/dem/wall_friction to another value")
     overlap = own.get("overlap", 0.01)
     e = own.get("restitution", 0.3)
     heights = [b["max"][2] for b in case["blocks"]], [b["min"][2] for b in case["blocks"]]
@@ -44,8 +49,7 @@ def contact_parameters(case, dx, mass, gravity):
     zeta = gamma_n / (2.0 * math.sqrt(k * m_eff))
     k_t = 2.0 / 7.0 * k
     return {"kn": k, "kt": k_t, "gamman": gamma_n, "gammat": 2.0 * zeta * math.sqrt(k_t * m_eff),
-            "friction": own.get("friction", 0.5), "wall_friction": own.get("wall_friction", own.get("friction", 0.5)),
-            "rolling": own.get("rolling_friction", 0.0), "rolling_damping_ratio": zeta,
+            "friction": friction, "rolling": own.get("rolling_friction", 0.0), "rolling_damping_ratio": zeta,
             "dt_max": 0.1 * math.sqrt(mass / k)}
 
 

@@ -1,0 +1,45 @@
+// The momentum exchange between the sand and the water grids of two-grid MPM (Tampubolon et al.
+// 2017): where both phases have mass on a node, a drag ξ (v_w − v_s) acts on the sand and its
+// negative on the water, taken implicitly so that any ξ Δt is stable (docs/equations.md §9).
+#pragma once
+#include <algorithm>
+
+#include "core/types.hpp"
+
+namespace sc::mpm {
+
+/// The drag coefficient per unit mixture volume that gives Darcy's law in a steady seepage,
+/// c_E = n² ρ_w g / K [kg m⁻³ s⁻¹] (porosity n, water density ρ_w, gravity g, hydraulic conductivity
+/// K [m/s]): the water's momentum balance n ρ_w g i = c_E (v_w − v_s) with the Darcy flux
+/// q = n (v_w − v_s) gives q = K i for a hydraulic gradient i. [Tampubolon 2017: drag c_E]
+inline double drag_per_volume(double porosity, double water_density, double g, double conductivity) {
+  return porosity * porosity * water_density * g / conductivity;
+}
+
+/// The water saturation of a node, the water volume over the pore volume of the sand there:
+/// s_i = min(1, V_i^w / (n V_i^s)), V^α the nodal sums Σ_p w_ip V_p^α; 0 without sand.
+/// (A volume fraction, not an indicator of where the two grids overlap.) [Tampubolon 2017: saturation]
+inline double node_saturation(double sand_volume, double water_volume, double porosity) {
+  return sand_volume > 0.0 ? std::min(1.0, water_volume / (porosity * sand_volume)) : 0.0;
+}
+
+/// The drag coefficient of a node [kg/s]: ξ_i = c_E s_i V_i^s, the mixture volume the node's sand
+/// represents, in the share of its pores the water fills. [Tampubolon 2017: nodal drag ξ]
+inline double node_drag(double drag_per_volume, double sand_volume, double saturation) {
+  return drag_per_volume * saturation * sand_volume;
+}
+
+/// Sand and water velocities of one node after the implicit exchange. With a = Δt ξ, the two rows
+///   (m_s + a) v_s − a v_w = m_s ṽ_s,   −a v_s + (m_w + a) v_w = m_w ṽ_w
+/// (the same 2x2 matrix for every component) are solved by Cramer's rule: the total momentum is
+/// kept exactly and the relative velocity falls by 1/(1 + a (1/m_s + 1/m_w)).
+/// [Tampubolon 2017: eq. 22, implicit momentum exchange]
+template <int D>
+void exchange_momentum(double m_s, double m_w, double a, Vec<D>& v_s, Vec<D>& v_w) {
+  const Vec<D> p_s = m_s * v_s, p_w = m_w * v_w;
+  const double det = (m_s + a) * (m_w + a) - a * a;
+  v_s = ((m_w + a) * p_s + a * p_w) / det;
+  v_w = (a * p_s + (m_s + a) * p_w) / det;
+}
+
+}  // namespace sc::mpm

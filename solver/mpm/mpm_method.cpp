@@ -1,0 +1,231 @@
+#include "mpm/mpm_method.hpp"
+
+#include <cmath>
+
+#include "core/checksum.hpp"
+#include "core/errors.hpp"
+#include "method/view_vtu.hpp"
+#include "mpm/exchange.hpp"
+#include "mpm/grid_field.hpp"
+#include "scene/scene_builder.hpp"
+
+namespace sc {
+
+namespace {
+
+/// Ghost node layers beyond each wall: a particle on a wall still has its whole stencil on the grid.
+constexpr long ghost_layers = 2;
+
+/// Whether the case has a block of this fill.
+bool has_fill(const CaseSpec& spec, BlockFill fill) {
+  for (const BlockSpec& b : spec.blocks)
+    if (b.fill == fill) return true;
+  return false;
+}
+
+/// The particles of one block on the lattice of spacing dx, each ρ dx^D of the block's phase.
+template <int D>
+void seed_block(const BlockSpec& block, double dx, double rho, mpm::Particles<D>& ps) {
+  std::array<long, D> n{};
+  long count = 1;
+  for (int d = 0; d < D; ++d) {
+    n[d] = std::lround((block.max[d] - block.min[d]) / dx);
+    count *= n[d];
+  }
+  const double volume = std::pow(dx, D);
+  for (long k = 0; k < count; ++k) {
+    Vec<D> x;
+    long rest = k;
+    for (int d = 0; d < D; ++d) {
+      x[d] = block.min[d] + (static_cast<double>(rest % n[d]) + 0.5) * dx;
+      rest /= n[d];
+    }
+    ps.add(x, rho * volume, volume, block.phase());
+  }
+}
+
+}  // namespace
+
+MpmCaseParams read_mpm_params(const CaseSpec& spec) {
+  const json own = spec.methods.contains("mpm") ? spec.methods.at("mpm") : json::object();
+  if (!own.is_object()) throw InputError(spec.file, "/methods/mpm", "must be an object of MPM's parameters");
+  JsonObject o(own, "/methods/mpm", spec.file);
+  MpmCaseParams p;
+  p.cell_size = o.in_range("cell_size", 1.0, 4.0, false, p.cell_size);
+  p.cfl = o.in_range("cfl", 0.0, 1.0, false, p.cfl);
+  if (p.cfl <= 0.0) o.fail("cfl", "must be in (0, 1]");
+  p.youngs_modulus = o.positive("youngs_modulus", p.youngs_modulus);
+  p.poisson_ratio = o.in_range("poisson_ratio", 0.0, 0.5, false, p.poisson_ratio);
+  if (p.poisson_ratio >= 0.5) o.fail("poisson_ratio", "must be in [0, 0.5)");
+  p.volume_correction = o.boolean("volume_correction", p.volume_correction);
+  p.porosity = o.in_range("porosity", 0.0, 1.0, true, p.porosity);
+  p.hydraulic_conductivity = o.positive("hydraulic_conductivity", p.hydraulic_conductivity);
+  o.finish();
+  if (!spec.tank) throw InputError(spec.file, "/tank", "method \"mpm\" needs a tank (its sides are the grid's walls)");
+  if (!spec.meshes.empty()) throw InputError(spec.file, "/meshes", "method \"mpm\" fills blocks only, not meshes");
+  if (spec.porous) throw InputError(spec.file, "/porous", "method \"mpm\" models the pores by its two grids, not by a porous section");
+  if (spec.adaptive) throw InputError(spec.file, "/adaptive", "method \"mpm\" has no split and merge");
+  if (spec.blocks.empty()) throw InputError(spec.file, "/blocks", "method \"mpm\" needs at least one block");
+  for (std::size_t b = 0; b < spec.blocks.size(); ++b)
+    if (spec.blocks[b].fill == BlockFill::PorousBed)
+      throw InputError(spec.file, "/blocks/" + std::to_string(b) + "/phase",
+                       "method \"mpm\" runs water and sand blocks only, not a porous bed");
+  if (has_fill(spec, BlockFill::Sand) && !(spec.sand.friction_angle_deg > 0.0))
+    throw InputError(spec.file, "/sand/friction_angle", "method \"mpm\" needs a positive friction angle (its cone's apex sits at c cot phi)");
+  return p;
+}
+
+template <int D>
+mpm::Params<D> mpm_params(const CaseSpec& spec, const MpmCaseParams& own, double dx) {
+  const TankSpec& tank = *spec.tank;
+  mpm::Params<D> p;
+  p.grid.h = own.cell_size * dx;
+  for (int d = 0; d < D; ++d) {
+    const double lo = tank.closed(d, -1) ? tank.min[d] : spec.domain_min[d];
+    const double hi = tank.closed(d, 1) ? tank.max[d] : spec.domain_max[d];
+    const long cells = std::max(1L, static_cast<long>(std::ceil((hi - lo) / p.grid.h - 1e-9)));
+    p.grid.origin[d] = lo - ghost_layers * p.grid.h;
+    p.grid.count[d] = cells + 1 + 2 * ghost_layers;
+    p.wall_lo[d] = lo;
+    p.wall_hi[d] = tank.closed(d, 1) ? hi : lo + cells * p.grid.h;
+    p.rough[2 * d] = tank.rule(d, -1) == WallRule::NoSlip;
+    p.rough[2 * d + 1] = tank.rule(d, 1) == WallRule::NoSlip;
+  }
+  p.wall_friction = spec.sand.wall_mu();
+  p.gravity = to_vec<D>(spec.gravity);
+  p.sand = mpm::SandModel::from(D, own.youngs_modulus, own.poisson_ratio, spec.sand.friction_angle_deg, own.volume_correction);
+  p.cohesion = spec.sand.cohesion;
+  p.wet_cohesion_loss = spec.sand.wet_cohesion_loss;
+  p.sand_density = spec.sand.rest_density;
+  p.water_density = spec.water.rest_density;
+  p.eos = spec.eos;
+  p.porosity = own.porosity;
+  const double g = p.gravity.norm();
+  if (has_fill(spec, BlockFill::Sand) && has_fill(spec, BlockFill::Water)) {
+    if (g == 0.0)
+      throw InputError(spec.file, "/methods/mpm/hydraulic_conductivity",
+                       "the drag c_E = n^2 rho_w g / K of sand and water needs gravity");
+    p.drag = mpm::drag_per_volume(own.porosity, p.water_density, g, own.hydraulic_conductivity);
+  }
+  p.cfl = own.cfl;
+  p.relax_until = spec.relax_until;
+  p.relax_rate = spec.relax_rate;
+  return p;
+}
+
+template <int D>
+MpmMethod<D>::MpmMethod(mpm::MpmSolver<D> solver, double dt, double support)
+    : solver_(std::move(solver)), last_good_(solver_.particles()), dt_(dt), support_(support) {}
+
+template <int D>
+void MpmMethod<D>::check_state() const {
+  const mpm::Particles<D>& ps = solver_.particles();
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const char* field = !ps.x[i].allFinite() ? "x" : (!ps.v[i].allFinite() ? "v" : (!(ps.J[i] > 0.0) ? "J" : nullptr));
+    if (field)
+      throw BlowUpError(steps_, solver_.time(), static_cast<long>(i), ps.is_sand(i) ? "sand" : "water", field,
+                        field[0] == 'J' ? "volume ratio not positive" : "not finite");
+  }
+}
+
+template <int D>
+double MpmMethod<D>::step() {
+  last_good_ = solver_.particles();
+  substeps_ += solver_.advance(dt_);
+  check_state();
+  ++steps_;
+  return dt_;
+}
+
+template <int D>
+void MpmMethod<D>::reset_stage_times() {
+  solver_.timers().reset();
+  substeps_ = 0;
+}
+
+template <int D>
+ParticleView<D> MpmMethod<D>::view_of(const mpm::Particles<D>& ps) const {
+  const mpm::Params<D>& params = solver_.params();
+  pressure_.resize(ps.size());
+  density_.resize(ps.size());
+  support_field_.assign(ps.size(), support_);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const Mat<D> tau = ps.is_sand(i) ? mpm::hencky_kirchhoff<D>(ps.Fe[i], params.sand)
+                                     : mpm::water_kirchhoff<D>(ps.J[i], params.water_density, params.eos);
+    pressure_[i] = -tau.trace() / (D * ps.J[i]);
+    density_[i] = ps.m[i] / (ps.J[i] * ps.V0[i]);
+  }
+  pressure_ = mpm::through_grid<D>(params.grid, ps, pressure_);
+  ParticleView<D> view;
+  view.x = {ps.x.data(), ps.size()};
+  view.v = {ps.v.data(), ps.size()};
+  view.m = ps.m;
+  view.phase = ps.phase;
+  view.pressure = pressure_;
+  view.density = density_;
+  view.support = support_field_;
+  view.saturation = ps.saturation;
+  return view;
+}
+
+template <int D>
+ParticleView<D> MpmMethod<D>::particles() const {
+  return view_of(solver_.particles());
+}
+
+template <int D>
+std::string MpmMethod<D>::checksum() const {
+  const mpm::Particles<D>& ps = solver_.particles();
+  return state_checksum<D>(std::span<const Vec<D>>(ps.x.data(), ps.size()), std::span<const Vec<D>>(ps.v.data(), ps.size()));
+}
+
+template <int D>
+std::vector<StageTime> MpmMethod<D>::stage_times() const {
+  std::vector<StageTime> out;
+  for (std::size_t s = 0; s < mpm::mpm_stage_names.size(); ++s) {
+    const auto stage = static_cast<mpm::MpmStage>(s);
+    out.push_back({std::string(mpm::mpm_stage_names[s]), solver_.timers().seconds(stage),
+                   stage == mpm::MpmStage::Transfer ? substeps_ : 0});
+  }
+  return out;
+}
+
+template <int D>
+std::string MpmMethod<D>::vtu_frame() const {
+  return vtu_document<D>(particles());
+}
+
+template <int D>
+std::string MpmMethod<D>::last_good_frame() const {
+  return vtu_document<D>(view_of(last_good_));
+}
+
+template <int D>
+void MpmMethod<D>::write_checkpoint(const std::string&, const json&) const {
+  throw std::logic_error("method \"mpm\" writes no checkpoints");
+}
+
+template <int D>
+std::unique_ptr<Method<D>> make_mpm_method(const CaseSpec& spec, double dx) {
+  const MpmCaseParams own = read_mpm_params(spec);
+  const mpm::Params<D> params = mpm_params<D>(spec, own, dx);
+  mpm::Particles<D> ps;
+  for (std::size_t b = 0; b < spec.blocks.size(); ++b) {
+    const BlockSpec& block = spec.blocks[b];
+    for (int d = 0; d < D; ++d)
+      if (block.min[d] < params.wall_lo[d] || block.max[d] > params.wall_hi[d])
+        throw InputError(spec.file, "/blocks/" + std::to_string(b),
+                         "method \"mpm\": the block must lie inside the grid's walls (the tank, open sides to the domain)");
+    seed_block<D>(block, dx, block.fill == BlockFill::Sand ? spec.sand.rest_density : spec.water.rest_density, ps);
+  }
+  return std::make_unique<MpmMethod<D>>(mpm::MpmSolver<D>(params, std::move(ps)), spec.dt_max, spec.support_ratio * dx);
+}
+
+template mpm::Params<2> mpm_params<2>(const CaseSpec&, const MpmCaseParams&, double);
+template mpm::Params<3> mpm_params<3>(const CaseSpec&, const MpmCaseParams&, double);
+template class MpmMethod<2>;
+template class MpmMethod<3>;
+template std::unique_ptr<Method<2>> make_mpm_method<2>(const CaseSpec&, double);
+template std::unique_ptr<Method<3>> make_mpm_method<3>(const CaseSpec&, double);
+
+}  // namespace sc

@@ -1,0 +1,86 @@
+// Two-grid MPM after Tampubolon et al. 2017 behind the method seam: MpmMethod<D> runs an
+// MpmSolver<D> (this folder) as a Method<D>, built from a case's blocks, tank, gravity, water and
+// sand sections, with MPM's own numbers from the case's "methods": {"mpm": {...}} object
+// (cases/README.md, docs/equations.md §9).
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "case/case_file.hpp"
+#include "method/method.hpp"
+#include "mpm/mpm_solver.hpp"
+
+namespace sc {
+
+/// MPM's own parameters of a case, "methods"/"mpm" (every key optional):
+///   cell_size               grid cell width in particle spacings (2: 2^D particles per cell)
+///   cfl                     substeps move the fastest wave at most cfl cell widths, in (0, 1]
+///   youngs_modulus          E of the sand's Hencky elasticity [Pa]
+///   poisson_ratio           ν of the sand, in [0, 0.5)
+///   volume_correction       Tampubolon et al.'s volume correction of the return mapping (true)
+///   porosity                n of the sand, in (0, 1)
+///   hydraulic_conductivity  K [m/s] of the sand; the drag c_E = n² ρ_w g / K
+struct MpmCaseParams {
+  double cell_size = 2.0;
+  double cfl = 0.4;
+  double youngs_modulus = 3.537e5;
+  double poisson_ratio = 0.3;
+  bool volume_correction = true;
+  double porosity = 0.4;
+  double hydraulic_conductivity = 1e-3;
+};
+
+/// Reads and checks the case's "methods"/"mpm" object and that the case is one MPM can run (a tank,
+/// blocks of water or sand only, no meshes, porous section or adaptivity, a positive friction angle
+/// for sand). Throws InputError (the case file, the JSON path, the rule). Allocates nothing.
+MpmCaseParams read_mpm_params(const CaseSpec& spec);
+
+/// The solver parameters of the case at particle spacing dx: the grid covers the tank, extended to
+/// the domain on open sides (where a smooth lid at the grid's edge keeps the material in).
+template <int D>
+mpm::Params<D> mpm_params(const CaseSpec& spec, const MpmCaseParams& own, double dx);
+
+template <int D>
+class MpmMethod final : public Method<D> {
+ public:
+  /// The solver, the case's step (divided into stable substeps) and the support radius the view reports.
+  MpmMethod(mpm::MpmSolver<D> solver, double dt, double support);
+
+  std::string_view name() const override { return "mpm"; }
+  /// Keeps the particles as the last good state, then advances the case's step in substeps.
+  double step() override;
+  double time() const override { return solver_.time(); }
+  long steps() const override { return steps_; }
+  /// x, v, m, phase; pressure −tr τ / (D J) (water: the equation of state at J), seen through the
+  /// grid (mpm/grid_field.hpp); density
+  /// m / (J V0); the case's support radius; the sand's saturation (0 for water).
+  ParticleView<D> particles() const override;
+  std::string checksum() const override;
+  /// The solver's stage times; the transfer's count is its substeps.
+  std::vector<StageTime> stage_times() const override;
+  void reset_stage_times() override;
+  std::string vtu_frame() const override;
+  std::string last_good_frame() const override;
+  bool writes_checkpoints() const override { return false; }
+  void write_checkpoint(const std::string& path, const json& run) const override;
+
+  const mpm::MpmSolver<D>& solver() const { return solver_; }
+
+ private:
+  ParticleView<D> view_of(const mpm::Particles<D>& ps) const;
+  void check_state() const;
+
+  mpm::MpmSolver<D> solver_;
+  mpm::Particles<D> last_good_;
+  double dt_, support_;
+  long steps_ = 0, substeps_ = 0;
+  mutable std::vector<double> pressure_, density_, support_field_;  // fields of the last particles() call
+};
+
+/// MPM at t = 0: the case's blocks on the lattice of spacing dx, in file order, at rest; each
+/// particle carries ρ dx^D of its phase.
+template <int D>
+std::unique_ptr<Method<D>> make_mpm_method(const CaseSpec& spec, double dx);
+
+}  // namespace sc

@@ -1,0 +1,40 @@
+// The particles of two-grid MPM: sand and water in one structure of arrays, each particle carrying
+// its phase; the sand's state (elastic deformation gradient, volume correction, saturation) and the
+// water's (volume ratio J) sit in the same arrays, unused entries at their neutral values.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace sc::mpm {
+
+template <int D>
+struct Particles {
+  std::vector<Vec<D>> x, v;         ///< position [m], velocity [m/s]
+  std::vector<Mat<D>> C;            ///< APIC affine velocity [1/s]
+  std::vector<Mat<D>> Fe;           ///< elastic deformation gradient F^E (sand; 𝟙 for water)
+  std::vector<double> m, V0;        ///< mass [kg], volume at the start [m^D]
+  std::vector<double> J;            ///< volume ratio det F, V = J V0 (both phases)
+  std::vector<double> vc;           ///< volume correction v_c (sand) [-]
+  std::vector<double> saturation;   ///< water fraction of the sand's pores, in [0, 1] (sand; 0 for water)
+  std::vector<std::uint8_t> phase;  ///< Phase as an integer (Water or Sand)
+
+  std::size_t size() const { return x.size(); }
+  bool is_sand(std::size_t i) const { return phase[i] == static_cast<std::uint8_t>(Phase::Sand); }
+  /// Appends a particle at rest, undeformed, dry.
+  void add(const Vec<D>& position, double mass, double volume, Phase ph) {
+    x.push_back(position);
+    v.push_back(Vec<D>::Zero());
+    C.push_back(Mat<D>::Zero());
+    Fe.push_back(Mat<D>::Identity());
+    m.push_back(mass);
+    V0.push_back(volume);
+    J.push_back(1.0);
+    vc.push_back(0.0);
+    saturation.push_back(0.0);
+    phase.push_back(static_cast<std::uint8_t>(ph));
+  }
+};
+
+}  // namespace sc::mpm

@@ -1,0 +1,158 @@
+// `sandcastle render` (validation/render/, docs/render.md), run as the real command: a sphere seen
+// by an orthographic camera covers exactly its projected disc in the PNG, and the same frame
+// renders to the same bytes twice. Both need Debian's povray and ffmpeg and are skipped, saying so,
+// without povray. The render block does not enter the parameters hash (baselines stay comparable).
+#include <png.h>
+
+#include <boost/test/unit_test.hpp>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <thread>
+
+#include "case/case_file.hpp"
+#include "io/atomic_file.hpp"
+#include "io/json_reader.hpp"
+#include "io/vtu_writer.hpp"
+#include "render/programs.hpp"
+#include "runner.hpp"
+#include "support/process.hpp"
+#include "surface/surface_mesh.hpp"
+
+namespace fs = std::filesystem;
+using namespace sc;
+
+namespace {
+
+constexpr int kWidth = 480, kHeight = 360;  // not square: a camera that ignores the aspect shows
+constexpr double kViewWidth = 2.0;         // the view [m]: 240 pixels per metre
+constexpr double kRadius = 0.5;            // [m]
+
+/// A UV sphere of `rings` latitude bands and 2·rings longitudes, triangles counter-clockwise from
+/// outside; point k's saturation rises from 0 at the bottom to 1 at the top.
+surface::SurfaceMesh uv_sphere(double r, int rings) {
+  surface::SurfaceMesh m;
+  const int segments = 2 * rings;
+  m.points.push_back(Vec<3>(0, 0, -r));
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      const double theta = pi * i / rings - pi / 2, phi = 2 * pi * j / segments;
+      m.points.push_back(r * Vec<3>(std::cos(theta) * std::cos(phi), std::cos(theta) * std::sin(phi), std::sin(theta)));
+    }
+  m.points.push_back(Vec<3>(0, 0, r));
+  const auto at = [&](int i, int j) { return static_cast<std::uint32_t>(1 + (i - 1) * segments + (j % segments)); };
+  const auto top = static_cast<std::uint32_t>(m.points.size() - 1);
+  for (int j = 0; j < segments; ++j) {
+    m.triangles.push_back({0, at(1, j + 1), at(1, j)});
+    m.triangles.push_back({top, at(rings - 1, j), at(rings - 1, j + 1)});
+    for (int i = 1; i + 1 < rings; ++i) {
+      m.triangles.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+      m.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+    }
+  }
+  for (const Vec<3>& p : m.points) m.saturation.push_back(0.5 + 0.5 * p[2] / r);
+  return m;
+}
+
+/// A run folder with one frame: the sphere as its sand surface (frames.pvd, the VTU, the VTP).
+std::string sphere_run() {
+  const std::string dir = test::fresh_path("render_run");
+  fs::create_directories(dir);
+  const std::vector<Vec<3>> centre = {Vec<3>::Zero()};
+  write_file_atomic(dir + "/frame_00000.vtu", vtu_points_document<3>(centre, [](auto&&) {}));
+  write_file_atomic(dir + "/" + surface_file_name(Phase::Sand, 0), surface::vtp_document(uv_sphere(kRadius, 128)));
+  write_file_atomic(dir + "/frames.pvd", pvd_document({{0.0, "frame_00000.vtu"}}, [](std::size_t k) {
+                      return std::vector<std::string>{surface_file_name(Phase::Sand, k)};
+                    }));
+  return dir;
+}
+
+/// A 3-D case whose render block looks at the origin along +y with an orthographic camera, lit from
+/// the camera, on white without a floor.
+json sphere_case() {
+  return json::parse(R"({"name": "render_sphere", "dimension": 3,
+    "domain": {"min": [-1, -1, -1], "max": [1, 1, 1]}, "gravity": [0, 0, -9.81], "time": {"end": 0.1},
+    "water": {"rest_density": 1000, "sound_speed": 10},
+    "blocks": [{"phase": "water", "min": [0, 0, 0], "max": [0.2, 0.2, 0.2]}],
+    "tiers": {"quick": {"spacings": [0.05]}, "full": {"spacings": [0.05]}},
+    "render": {"width": 480, "height": 360, "floor": false, "background": [1, 1, 1],
+               "camera": {"projection": "orthographic", "location": [0, -5, 0], "look_at": [0, 0, 0], "view_width": 2.0},
+               "lights": [{"position": [0, -20, 0]}]}})");
+}
+
+std::string write_case(const json& doc) {
+  const std::string path = test::fresh_path("render_case") + ".json";
+  write_file_atomic(path, doc.dump(1));
+  return path;
+}
+
+/// `sandcastle render RUN --case CASE --out OUT`; returns OUT/frame_00000.png.
+std::string render_frame(const std::string& run, const std::string& case_file) {
+  const std::string out = test::fresh_path("render_out");
+  const test::ProcessResult r = test::run_sandcastle({"render", run, "--case", case_file, "--out", out}, 120.0);
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  return out + "/frame_00000.png";
+}
+
+/// The pixels of a PNG as RGB bytes (libpng's simplified reader).
+std::vector<unsigned char> rgb_pixels(const std::string& path, int& width, int& height) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  BOOST_TEST_REQUIRE(png_image_begin_read_from_file(&image, path.c_str()) != 0, path);
+  image.format = PNG_FORMAT_RGB;
+  std::vector<unsigned char> pixels(PNG_IMAGE_SIZE(image));
+  BOOST_TEST_REQUIRE(png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr) != 0, path);
+  width = static_cast<int>(image.width);
+  height = static_cast<int>(image.height);
+  return pixels;
+}
+
+struct PovrayPresent {
+  boost::test_tools::assertion_result operator()(boost::unit_test::test_unit_id) const {
+    boost::test_tools::assertion_result present(!render::find_program("povray").empty());
+    present.message() << "povray is not installed (apt-get install povray, tools/install_deps.sh): render checks skipped";
+    return present;
+  }
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(render)
+
+// Orthographic projection maps a sphere of radius r to a disc of area π r² (240 px/m here), so
+// the pixels that differ from the white background count that area within 2 % (edge pixels count
+// when more than about half covered). Fails when the camera's view extent or its aspect is wrong,
+// or vertices are written scaled or moved.
+BOOST_AUTO_TEST_CASE(sphere_silhouette_is_the_projected_disc, *boost::unit_test::precondition(PovrayPresent())) {
+  int width = 0, height = 0;
+  const std::vector<unsigned char> px = rgb_pixels(render_frame(sphere_run(), write_case(sphere_case())), width, height);
+  BOOST_TEST_REQUIRE(width == kWidth);
+  BOOST_TEST_REQUIRE(height == kHeight);
+  long covered = 0;
+  for (std::size_t i = 0; i < px.size(); i += 3)
+    covered += std::max({255 - px[i], 255 - px[i + 1], 255 - px[i + 2]}) > 64 ? 1 : 0;
+  const double pixels_per_metre = kWidth / kViewWidth;
+  const double disc = pi * std::pow(kRadius * pixels_per_metre, 2);
+  BOOST_TEST(std::abs(covered - disc) / disc < 0.02, "covered " << covered << " pixels, disc " << disc);
+}
+
+// POV-Ray stamps its PNG and PPM output with the time; render stores the pixels through ffmpeg
+// without it, and antialiasing without jitter, so a frame rendered twice, more than a second
+// apart, is the same file byte for byte. Fails when POV-Ray's own PNG is kept.
+BOOST_AUTO_TEST_CASE(same_frame_renders_to_the_same_bytes, *boost::unit_test::precondition(PovrayPresent())) {
+  const std::string run = sphere_run(), case_file = write_case(sphere_case());
+  const std::string first = test::read_text(render_frame(run, case_file));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));
+  const std::string second = test::read_text(render_frame(run, case_file));
+  BOOST_TEST_REQUIRE(!first.empty());
+  BOOST_TEST((first == second), "the two renders differ");
+}
+
+// How a run is drawn is no parameter of it: a case with and without its render block hashes alike.
+BOOST_AUTO_TEST_CASE(render_block_is_not_a_parameter) {
+  json without = sphere_case();
+  without.erase("render");
+  BOOST_TEST(load_case(sphere_case(), "with.json").parameters_hash == load_case(without, "without.json").parameters_hash);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
