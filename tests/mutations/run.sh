@@ -53,7 +53,7 @@ if [[ $suite -eq 1 ]]; then
 fi
 
 caught=0 survived=0 skipped=0 survivors=()
-while IFS=$'\t' read -r id file from to; do
+while IFS=$'\t' read -r -u 3 id file from to; do
   [[ -z "$id" || "$id" == \#* ]] && continue
   [[ -n "$only" && ",$only," != *",$id,"* ]] && continue
   if ! python3 - "$src/$file" "$from" "$to" <<'PY'
@@ -73,7 +73,7 @@ PY
   else verdict="SURVIVED  $id"; survived=$((survived + 1)); survivors+=("$id"); fi
   echo "$verdict"
   git -C "$src" checkout -- "$file"
-done <"$manifest"
+done 3<"$manifest"  # fd 3: the tests (mpirun among them) may read standard input
 
 total=$((caught + survived))
 echo "caught $caught of $total applied mutations ($skipped skipped)"
