@@ -281,13 +281,17 @@ void receive(ParticleSet<D>& ps, std::size_t i, double dm, const Vec<D>& u) {
 /// Σ m v of water and moving sand is unchanged (test
 /// porous/absorption_and_emission_conserve_the_momentum_of_water_and_sand). A fixed porous bed
 /// (velocity 0) neither moves nor counts: what it takes leaves the system with the support, what
-/// it gives arrives at rest. A particle that takes nothing keeps its velocity bitwise.
+/// it gives arrives at rest. A particle that takes nothing keeps its velocity bitwise. A water
+/// particle left with no mass (it passed on all it held and all it took in the step) keeps its
+/// velocity: it has no mass to carry Σ_j Δm_j v_j − Δm v_i, which is dropped (the one place the
+/// exchange does not conserve momentum); a division by its zero mass would give an infinite
+/// velocity that absorb_small hands on to the grain taking the empty particle.
 template <int D>
 void take_momentum(ParticleSet<D>& ps, const PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i)
-    if (w.part[i] && ps.moves(i) && w.taken[i] > 0.0) ps.v[i] += (w.brought[i] - w.taken[i] * ps.v[i]) / ps.m[i];
+    if (w.part[i] && ps.moves(i) && w.taken[i] > 0.0 && ps.m[i] > 0.0) ps.v[i] += (w.brought[i] - w.taken[i] * ps.v[i]) / ps.m[i];
 }
 
 /// Conserving diffusion (28′): raw flows (kept per neighbour-list entry), limiter scales,
