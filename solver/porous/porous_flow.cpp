@@ -282,10 +282,11 @@ void receive(ParticleSet<D>& ps, std::size_t i, double dm, const Vec<D>& u) {
 /// porous/absorption_and_emission_conserve_the_momentum_of_water_and_sand). A fixed porous bed
 /// (velocity 0) neither moves nor counts: what it takes leaves the system with the support, what
 /// it gives arrives at rest. A particle that takes nothing keeps its velocity bitwise. A water
-/// particle left with no mass (it passed on all it held and all it took in the step) keeps its
-/// velocity: it has no mass to carry Σ_j Δm_j v_j − Δm v_i, which is dropped (the one place the
-/// exchange does not conserve momentum); a division by its zero mass would give an infinite
-/// velocity that absorb_small hands on to the grain taking the empty particle.
+/// particle left with no mass keeps its velocity. Its outflow limit (outflow_scale) lets it give
+/// at most what it held, so its mass ends at exactly 0 only when what it took is below the
+/// round-off of that mass; the momentum Σ_j Δm_j v_j − Δm v_i it cannot carry is of that order
+/// and is dropped. A division by the zero mass would give an infinite velocity (0/0 when nothing
+/// differs) that absorb_small hands on to the grain taking the empty particle.
 template <int D>
 void take_momentum(ParticleSet<D>& ps, const PorousWork<D>& w) {
   const auto n = static_cast<std::int64_t>(ps.size());
