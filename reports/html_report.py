@@ -21,6 +21,7 @@ th { background: #f0f0f0; }
 .fail, .error, .regressed { background: #f2dede; font-weight: bold; }
 .changed, .missing, .not_compared { background: #fcf8e3; }
 img { max-width: 48%; margin: 4px; border: 1px solid #ddd; }
+img.filmstrip { max-width: 100%; }
 code { font-size: 0.9em; }
 """
 
@@ -50,13 +51,14 @@ def table(headers, rows):
     return "\n".join(out) + "</table>"
 
 
-def image(path):
+def image(path, css=""):
     """An <img> with the PNG embedded, or a note when the file is missing."""
     if not os.path.exists(path):
         return f"<p>missing plot: <code>{esc(path)}</code></p>"
     with open(path, "rb") as f:
         data = base64.b64encode(f.read()).decode("ascii")
-    return f'<img alt="{esc(os.path.basename(path))}" src="data:image/png;base64,{data}">'
+    cls = f' class="{css}"' if css else ""
+    return f'<img{cls} alt="{esc(os.path.basename(path))}" src="data:image/png;base64,{data}">'
 
 
 def page(title, body):
@@ -141,6 +143,15 @@ def baseline_overlays(run_dir, c):
     return "<p>against the baseline:</p><div>" + "".join(tags) + "</div>"
 
 
+def filmstrip(run_dir, c):
+    """The case's filmstrip (its finest run drawn by `sandcastle render`), or why it has none."""
+    if "filmstrip" in c:
+        return "<div>" + image(os.path.join(run_dir, c["filmstrip"]), "filmstrip") + "</div>"
+    if "filmstrip_note" in c:
+        return f"<p>no filmstrip: {esc(c['filmstrip_note'])}</p>"
+    return ""
+
+
 def case_section(run_dir, c):
     out = f'<h2 id="{esc(key(c))}">{esc(key(c))} <span class="{c["status"]}">{esc(c["status"])}</span></h2>'
     if "message" in c:
@@ -148,7 +159,8 @@ def case_section(run_dir, c):
     out += metrics_table(c["metrics"])
     if "baseline" in c:
         out += baseline_section(c["baseline"]) + baseline_overlays(run_dir, c)
-    return out + "<div>" + "".join(image(os.path.join(run_dir, p)) for p in c["plots"]) + "</div>"
+    return (out + filmstrip(run_dir, c) + "<div>" + "".join(image(os.path.join(run_dir, p)) for p in c["plots"])
+            + "</div>")
 
 
 def metric_cell(run, name):

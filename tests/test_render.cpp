@@ -107,10 +107,49 @@ std::vector<unsigned char> rgb_pixels(const std::string& path, int& width, int& 
   return pixels;
 }
 
+/// A 2-D resting tank of water, 0.06 m by 0.1 m at spacing 0.01, 0.05 s with a frame every
+/// 0.01 s (six frames), drawn 160 × 120; in cases_dir/tank/case.json.
+void write_tank_case(const std::string& cases_dir) {
+  fs::create_directories(cases_dir + "/tank");
+  write_file_atomic(cases_dir + "/tank/case.json", json::parse(R"({
+    "name": "tank", "dimension": 2,
+    "domain": {"min": [-0.05, -0.05], "max": [0.11, 0.21]}, "gravity": [0.0, -9.81],
+    "time": {"end": 0.05, "dt": 0.001, "frame_interval": 0.01}, "support_ratio": 2.0,
+    "water": {"rest_density": 1000.0, "sound_speed": 20.0, "viscosity": 1.0},
+    "blocks": [{"phase": "water", "min": [0.0, 0.0], "max": [0.06, 0.1]}],
+    "tank": {"min": [0.0, 0.0], "max": [0.06, 0.16], "sides": {"x-": "no_slip", "x+": "no_slip", "y-": "no_slip", "y+": "open"}},
+    "validation": {"observer": "hydrostatic", "average_time": 0.02,
+                   "metrics": {"pressure_l2": {"max": 10.0}, "surface_drift": {"max": 10.0}, "spurious_speed": {"max": 10.0}}},
+    "tiers": {"quick": {"spacings": [0.01]}, "full": {"spacings": [0.01]}},
+    "render": {"width": 160, "height": 120}})").dump(1));
+}
+
+/// `sandcastle validate --tier quick` of the tank case in a fresh folder, with `extra` arguments and
+/// environment; the run's report.json (its exit code must be 0).
+json validate_tank(const std::vector<std::string>& extra, const std::vector<std::string>& env, std::string& out) {
+  const std::string root = test::fresh_path("filmstrip");
+  write_tank_case(root + "/cases");
+  out = root + "/run";
+  std::vector<std::string> args = {"validate", "--tier", "quick", "--cases-dir", root + "/cases", "--baselines-dir",
+                                   root + "/baselines", "--out", out};
+  args.insert(args.end(), extra.begin(), extra.end());
+  const test::ProcessResult r = test::run_sandcastle(args, 300.0, env);
+  BOOST_TEST_REQUIRE(r.exit_code == 0, r.err);
+  return read_json_file(out + "/report.json").at("cases").at(0);
+}
+
 struct PovrayPresent {
   boost::test_tools::assertion_result operator()(boost::unit_test::test_unit_id) const {
     boost::test_tools::assertion_result present(!render::find_program("povray").empty());
     present.message() << "povray is not installed (apt-get install povray, tools/install_deps.sh): render checks skipped";
+    return present;
+  }
+};
+
+struct FfmpegPresent {
+  boost::test_tools::assertion_result operator()(boost::unit_test::test_unit_id) const {
+    boost::test_tools::assertion_result present(!render::find_program("ffmpeg").empty());
+    present.message() << "ffmpeg is not installed (apt-get install ffmpeg, tools/install_deps.sh): filmstrip check skipped";
     return present;
   }
 };
@@ -153,6 +192,39 @@ BOOST_AUTO_TEST_CASE(render_block_is_not_a_parameter) {
   json without = sphere_case();
   without.erase("render");
   BOOST_TEST(load_case(sphere_case(), "with.json").parameters_hash == load_case(without, "without.json").parameters_hash);
+}
+
+// The validation report shows every case: `validate` writes the finest run's frames and draws its
+// first, middle and last frame side by side into <case>/pictures/filmstrip.png (three 160 px wide
+// frames: 480 × 120), named in report.json; --no-pictures writes neither frames nor filmstrip; with
+// no ffmpeg on PATH the case says why in filmstrip_note and its status is unchanged. Fails when the
+// filmstrip is not drawn, drawn from other frames than the strip's, or its absence is silent.
+BOOST_AUTO_TEST_CASE(validate_draws_a_filmstrip_of_each_case, *boost::unit_test::precondition(FfmpegPresent())) {
+  std::string out;
+  const json drawn = validate_tank({}, {"OMP_NUM_THREADS=1"}, out);
+  BOOST_TEST_REQUIRE(drawn.contains("filmstrip"), drawn.dump());
+  BOOST_TEST(drawn.at("filmstrip") == "tank/pictures/filmstrip.png");
+  int width = 0, height = 0;
+  rgb_pixels(out + "/" + drawn.at("filmstrip").get<std::string>(), width, height);
+  BOOST_TEST(width == 3 * 160);
+  BOOST_TEST(height == 120);
+  BOOST_TEST(fs::exists(out + "/tank/frames.pvd"));
+  BOOST_TEST(!fs::exists(out + "/tank/pictures/frame_00001.png"));  // only the strip's frames: 0, 2, 5
+  BOOST_TEST(fs::exists(out + "/tank/pictures/frame_00002.png"));
+  BOOST_TEST(test::read_text(out + "/summary.md").find("](tank/pictures/filmstrip.png)") != std::string::npos);
+
+  const json skipped = validate_tank({"--no-pictures"}, {"OMP_NUM_THREADS=1"}, out);
+  BOOST_TEST(!skipped.contains("filmstrip"));
+  BOOST_TEST(!skipped.contains("filmstrip_note"));
+  BOOST_TEST(!fs::exists(out + "/tank/frames.pvd"));
+  BOOST_TEST(skipped.at("state_checksum") == drawn.at("state_checksum"));
+
+  const std::string empty = test::fresh_path("empty_path");
+  fs::create_directories(empty);
+  const json missing = validate_tank({}, {"OMP_NUM_THREADS=1", "PATH=" + empty}, out);
+  BOOST_TEST(!missing.contains("filmstrip"));
+  BOOST_TEST(missing.value("filmstrip_note", "").find("ffmpeg") != std::string::npos, missing.dump());
+  BOOST_TEST(missing.at("status") == drawn.at("status"));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

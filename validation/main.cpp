@@ -128,7 +128,10 @@ int main(int argc, char** argv) {
   val->add_option("--case", vopt.cases, "run only these cases (repeatable)");
   val->add_option("--out", vopt.out_dir, "output folder")->required()->check(output_folder);
   val->add_option("--cases-dir", vopt.cases_dir, "folder of cases (default: the repository's cases/)");
-  val->add_flag("!--no-plots", vopt.plots, "skip the PNG plots and report.html");
+  val->add_flag("!--no-plots", vopt.plots, "skip the PNG plots, the filmstrips and report.html");
+  val->add_flag("!--no-pictures", vopt.pictures,
+                "skip the filmstrips (each case's finest run drawn at its first, middle and last frame, or at the "
+                "frames of its render.filmstrip; docs/render.md)");
   val->add_option("--baselines-dir", vopt.baselines_dir, "folder of baselines (default: reference/baselines)");
   val->add_option("--max-particles", vopt.max_particles, max_help)->check(CLI::PositiveNumber);
   val->add_flag("--errata", vopt.errata,
@@ -141,6 +144,7 @@ int main(int argc, char** argv) {
 
   sc::ValidateOptions bopt;
   bopt.plots = false;
+  bopt.pictures = false;
   std::string bless_from;
   CLI::App* bl = app.add_subcommand("baseline",
                                     "Bless baselines: write reference/baselines/<case>.json (<case>.<method>.json for "
@@ -193,12 +197,14 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber);
   rnd->add_flag("--video", ropt.video, "write DIR/video.mp4 of every frame (ffmpeg, H.264)");
+  rnd->add_flag("--only-filmstrip", ropt.strip_only, "draw only the filmstrip's frames (implies --filmstrip)")
+      ->excludes("--video");
   rnd->add_option("--jobs", ropt.jobs, "frames rendered at a time (default 2)")->check(CLI::PositiveNumber);
 
   try {
     app.parse(argc, argv);
     const CLI::Option* filmstrip = rnd->get_option("--filmstrip");
-    ropt.filmstrip = filmstrip->count() > 0;
+    ropt.filmstrip = filmstrip->count() > 0 || ropt.strip_only;
     if (filmstrip->results() == std::vector<std::string>{""}) ropt.frames.clear();  // a bare --filmstrip: CLI11 reads "" as 0
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);

@@ -118,4 +118,16 @@ std::string summary_markdown(const json& report) {
   return o.str();
 }
 
+std::string filmstrip_markdown(const json& report) {
+  std::ostringstream o;
+  for (const json& c : report.at("cases")) {
+    if (c.contains("filmstrip"))
+      o << "\n**" << run_key(c) << "**\n\n![" << run_key(c) << "](" << c.at("filmstrip").get<std::string>() << ")\n";
+    else if (c.contains("filmstrip_note"))
+      o << "\n**" << run_key(c) << "**: no filmstrip (" << c.at("filmstrip_note").get<std::string>() << ")\n";
+  }
+  const std::string strips = o.str();
+  return strips.empty() ? strips : "\n## Filmstrips\n" + strips;
+}
+
 }  // namespace sc

@@ -23,6 +23,10 @@ json report_document(const std::vector<json>& cases);
 /// summary.md: a short table for terminals and CI logs.
 std::string summary_markdown(const json& report);
 
+/// The "Filmstrips" section of summary.md: each case's filmstrip (report.json "filmstrip") as an
+/// image link, or why it has none ("filmstrip_note"); empty when no case has either.
+std::string filmstrip_markdown(const json& report);
+
 /// The current commit of the source tree ("unknown" outside a checkout).
 std::string git_commit();
 

@@ -67,6 +67,7 @@ struct ValidateOptions {
   std::string cases_dir;           ///< default: <source>/cases
   std::string baselines_dir;       ///< default: <source>/reference/baselines
   bool plots = true;
+  bool pictures = true;            ///< each case's filmstrip (with plots; --no-pictures): its finest run writes frames, `render` draws them
   double max_particles = kDefaultMaxParticles;     ///< estimated particles above which a run is refused (--max-particles)
   bool errata = false;             ///< also run each erratum's printed form on its cases (--errata; validation/errata.hpp)
   bool convergence = false;        ///< run the cases' convergence studies instead of a tier (--convergence; validation/convergence.hpp)

@@ -12,6 +12,7 @@
 #include "io/atomic_file.hpp"
 #include "method/registry.hpp"
 #include "methods_report.hpp"
+#include "render/render.hpp"
 #include "report.hpp"
 #include "report_scripts.hpp"
 #include "runner.hpp"
@@ -24,17 +25,45 @@ namespace sc {
 
 namespace {
 
+/// The case's filmstrip in the report: `render` draws the frames of the finest run (run_dir) that
+/// the filmstrip takes (the case's render.filmstrip, else the first, middle and last) into
+/// <id>/pictures/ and the entry gets "filmstrip", its path in the report. Returns why there is none
+/// when drawing fails, else empty: a picture never changes a case's status.
+std::string add_filmstrip(const CaseSpec& spec, const std::string& id, const std::string& run_dir,
+                          const ValidateOptions& opt, json& entry) {
+  render::RenderOptions o;
+  o.run_dir = run_dir;
+  o.out_dir = opt.out_dir + "/" + id + "/pictures";
+  o.case_file = spec.file;
+  o.filmstrip = o.strip_only = true;
+  try {
+    if (render::render_run(o) != kSuccess) return "drawing failed (its log is in " + o.out_dir + ")";
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  entry["filmstrip"] = id + "/pictures/filmstrip.png";
+  return "";
+}
+
 /// Runs one case by one method (spec.method) at every spacing of the tier: its report entry, and
-/// what the finest run observed (for the side-by-side comparison of methods).
+/// what the finest run observed (for the side-by-side comparison of methods). With pictures, the
+/// finest run writes its frames (3-D: and surfaces) and the entry gets its filmstrip, or a note
+/// saying why there is none.
 MethodRun validate_case(const CaseSpec& spec, const std::string& id, const ValidateOptions& opt, int& exit_code) {
   const TierSpec& tier = spec.tiers.at(opt.tier);
   const std::string case_dir = opt.out_dir + "/" + id;
+  const bool pictures = opt.plots && opt.pictures;
+  const std::string missing = pictures ? render::missing_programs(spec.dimension, true) : "";
   std::vector<RunResult> runs;
+  std::string finest_dir;
   for (std::size_t k = 0; k < tier.spacings.size(); ++k) {
     RunSettings settings;
     settings.out_dir = tier.spacings.size() == 1 ? case_dir : case_dir + "/dx" + std::to_string(k);
     settings.end_time = tier.end_time;
     settings.label = id + (tier.spacings.size() > 1 ? " dx" + std::to_string(k) : "");
+    settings.write_frames = pictures && missing.empty() && k + 1 == tier.spacings.size();
+    settings.write_surfaces = settings.write_frames && spec.dimension == 3;
+    finest_dir = settings.out_dir;
     runs.push_back(run_simulation(spec, tier.spacings[k], settings));
     if (runs.back().status == "error") break;
   }
@@ -56,6 +85,13 @@ MethodRun validate_case(const CaseSpec& spec, const std::string& id, const Valid
   json entry = case_entry(spec, opt.tier, runs, id + "/series.json", plots);
   entry["method"] = spec.method;
   entry["run_id"] = id;
+  std::string no_filmstrip = missing;
+  if (pictures && missing.empty() && runs.size() == tier.spacings.size())
+    no_filmstrip = add_filmstrip(spec, id, finest_dir, opt, entry);
+  if (!no_filmstrip.empty()) {
+    std::cerr << "note: " << id << ": no filmstrip: " << no_filmstrip << "\n";
+    entry["filmstrip_note"] = no_filmstrip;
+  }
   add_baseline_comparison(spec, opt, entry, exit_code);
   const std::string status = entry.at("status");
   if (status == "error") exit_code = std::max(exit_code, static_cast<int>(runs.back().exit_code));
@@ -222,7 +258,7 @@ int validate(const ValidateOptions& opt) {
     run_report_script("html_report.py", {opt.out_dir});  // report.html, with the plots embedded
   }
   const std::string summary = summary_markdown(report) + methods_markdown(report) + baseline_markdown(report) +
-                              errata_markdown(report) + convergence_markdown(report);
+                              errata_markdown(report) + convergence_markdown(report) + filmstrip_markdown(report);
   write_file_atomic(opt.out_dir + "/summary.md", summary);
   std::cout << summary;
   return exit_code;

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <numeric>
 
 #include "case/case_file.hpp"
 #include "data_root.hpp"
@@ -77,12 +78,12 @@ void require_surfaces(const RenderOptions& o, const std::vector<Frame>& frames) 
 }
 
 /// The programs the render needs, each found on PATH; the message naming those missing, if any.
-std::string find_programs(int dimension, const RenderOptions& o, std::string& povray, std::string& ffmpeg) {
+std::string find_programs(int dimension, bool filmstrip_or_video, std::string& povray, std::string& ffmpeg) {
   povray = find_program("povray");
   ffmpeg = find_program("ffmpeg");
   std::string missing;
   if (dimension == 3 && povray.empty()) missing += " povray";
-  if ((dimension == 3 || o.filmstrip || o.video) && ffmpeg.empty()) missing += " ffmpeg";
+  if ((dimension == 3 || filmstrip_or_video) && ffmpeg.empty()) missing += " ffmpeg";
   if (missing.empty()) return missing;
   return "not found on PATH:" + missing + " (Debian: apt-get install" + missing + "; tools/install_deps.sh installs them)";
 }
@@ -112,16 +113,18 @@ bool render_scene(const std::string& povray, const std::string& ffmpeg, const Re
   return ok;
 }
 
+/// 3-D: the chosen frames' surfaces, each a POV-Ray scene rendered to PNG.
 bool render_surfaces(const RenderOptions& o, const RenderSettings& s, const std::vector<Frame>& frames,
-                     const std::string& povray, const std::string& ffmpeg) {
-  for (std::size_t k = 0; k < frames.size(); ++k) write_scene(o, s, frames[k], k);
-  Progress progress("render", static_cast<long>(frames.size()), "frames");
+                     const std::vector<std::size_t>& chosen, const std::string& povray, const std::string& ffmpeg) {
+  for (const std::size_t k : chosen) write_scene(o, s, frames[k], k);
+  Progress progress("render", static_cast<long>(chosen.size()), "frames");
   long finished = 0;
   const bool ok = run_parallel(
-      frames.size(), o.jobs, [&](std::size_t k) { return render_scene(povray, ffmpeg, s, o.out_dir, k); },
-      [&](std::size_t k, bool frame_ok) {
+      chosen.size(), o.jobs, [&](std::size_t i) { return render_scene(povray, ffmpeg, s, o.out_dir, chosen[i]); },
+      [&](std::size_t i, bool frame_ok) {
         if (!frame_ok)
-          std::cerr << "\npovray or ffmpeg failed on frame " << k << ": see " << frame_file(o.out_dir, k, ".log") << "\n";
+          std::cerr << "\npovray or ffmpeg failed on frame " << chosen[i] << ": see "
+                    << frame_file(o.out_dir, chosen[i], ".log") << "\n";
         ++finished;
         progress.update(static_cast<double>(finished), finished);
       });
@@ -129,11 +132,12 @@ bool render_surfaces(const RenderOptions& o, const RenderSettings& s, const std:
   return ok;
 }
 
-/// 2-D: reports/particle_snapshots.py draws every frame's particles in the scene's box.
-bool render_particles(const RenderOptions& o, const RenderSettings& s, const std::vector<Frame>& frames) {
+/// 2-D: reports/particle_snapshots.py draws the chosen frames' particles in the scene's box.
+bool render_particles(const RenderOptions& o, const RenderSettings& s, const std::vector<Frame>& frames,
+                      const std::vector<std::size_t>& chosen) {
   std::vector<std::string> args = {std::to_string(s.width), std::to_string(s.height)};
   for (const double v : {s.box_min[0], s.box_max[0], s.box_min[1], s.box_max[1]}) args.push_back(json(v).dump());
-  for (std::size_t k = 0; k < frames.size(); ++k) {
+  for (const std::size_t k : chosen) {
     args.push_back(json(frames[k].time).dump());
     args.push_back(o.run_dir + "/" + frames[k].particles);
     args.push_back(frame_file(o.out_dir, k, ".png"));
@@ -171,6 +175,11 @@ bool write_video(const std::string& ffmpeg, const std::string& dir) {
 
 }  // namespace
 
+std::string missing_programs(int dimension, bool filmstrip_or_video) {
+  std::string povray, ffmpeg;
+  return find_programs(dimension, filmstrip_or_video, povray, ffmpeg);
+}
+
 int render_run(const RenderOptions& o) {
   const CaseSpec spec = load_case(case_of_run(o));
   const RenderSettings settings = read_render_settings(spec);
@@ -179,13 +188,18 @@ int render_run(const RenderOptions& o) {
       o.filmstrip ? filmstrip_frames(o, settings, frames.size()) : std::vector<std::size_t>{};
   if (spec.dimension == 3) require_surfaces(o, frames);
   std::string povray, ffmpeg;
-  if (const std::string missing = find_programs(spec.dimension, o, povray, ffmpeg); !missing.empty()) {
+  if (const std::string missing = find_programs(spec.dimension, o.filmstrip || o.video, povray, ffmpeg); !missing.empty()) {
     std::cerr << "error: sandcastle render needs programs that are " << missing << "\n";
     return kToolMissing;
   }
+  std::vector<std::size_t> chosen = strip;  // the frames to draw: the filmstrip's, or all of them
+  if (!(o.filmstrip && o.strip_only)) {
+    chosen.resize(frames.size());
+    std::iota(chosen.begin(), chosen.end(), std::size_t{0});
+  }
   fs::create_directories(o.out_dir);
-  const bool drawn = spec.dimension == 3 ? render_surfaces(o, settings, frames, povray, ffmpeg)
-                                         : render_particles(o, settings, frames);
+  const bool drawn = spec.dimension == 3 ? render_surfaces(o, settings, frames, chosen, povray, ffmpeg)
+                                         : render_particles(o, settings, frames, chosen);
   if (!drawn) return kToolMissing;
   std::cout << "frames: " << frames.size() << " pictures " << o.out_dir << "/frame_NNNNN.png\n";
   if (o.filmstrip) {

@@ -16,11 +16,17 @@ struct RenderOptions {
   bool filmstrip = false;         ///< write DIR/filmstrip.png
   std::vector<long> frames;       ///< the filmstrip's frames; empty: the case's render.filmstrip, else first, middle, last
   bool video = false;             ///< write DIR/video.mp4
+  bool strip_only = false;        ///< draw only the filmstrip's frames (with `filmstrip`; the report's pictures)
   int jobs = 2;                   ///< frames rendered at a time
 };
 
-/// Renders the run: DIR/frame_NNNNN.png per frame (3-D: by way of the scene frame_NNNNN.pov), then the
-/// filmstrip and the video when asked. Returns the exit code: 0, 2 for bad input (InputError
+/// The programs a render of a `dimension`-D run needs that are not on PATH (povray for 3-D; ffmpeg for
+/// 3-D, filmstrips and videos), as a sentence naming them and their Debian packages; empty when all
+/// are there. The 2-D particle snapshots need python3-matplotlib, which only drawing finds out.
+std::string missing_programs(int dimension, bool filmstrip_or_video);
+
+/// Renders the run: DIR/frame_NNNNN.png per frame (only the filmstrip's with `strip_only`; 3-D: by
+/// way of the scene frame_NNNNN.pov), then the filmstrip and the video when asked. Returns the exit code: 0, 2 for bad input (InputError
 /// thrown before anything is written), 4 when a program it needs is missing or fails.
 int render_run(const RenderOptions& options);
 
