@@ -16,6 +16,7 @@
 #include "probe.hpp"
 #include "progress.hpp"
 #include "runner.hpp"
+#include "surface_bench.hpp"
 
 namespace fs = std::filesystem;
 
@@ -179,6 +180,13 @@ int bench(const BenchOptions& opt) {
     return kSuccess;
   }
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  if (opt.surface) {
+    const json document = run_surface_bench();
+    fs::create_directories(opt.out_dir);
+    write_file_atomic(opt.out_dir + "/surface.json", document.dump(2) + "\n");
+    std::cout << surface_bench_table(document);
+    return kSuccess;
+  }
   const std::string cases_dir = opt.cases_dir.empty() ? data_path("cases") : opt.cases_dir;
   const std::vector<std::string>& scenes = opt.scenes.empty() ? default_scenes : opt.scenes;
   fs::create_directories(opt.out_dir);

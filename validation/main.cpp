@@ -180,6 +180,11 @@ int main(int argc, char** argv) {
                   "instead of scenes, measure memory bandwidth (STREAM triad) and double-precision throughput at "
                   "1 .. --threads threads: DIR/probe.json")
       ->excludes("--scene");
+  bench->add_flag("--surface", benchopt.surface,
+                  "instead of scenes, time the surface reconstruction of a 68,921-particle block at a quarter of the "
+                  "spacing and on a 250^3 grid: DIR/surface.json")
+      ->excludes("--scene")
+      ->excludes("--probe");
 
   sc::render::RenderOptions ropt;
   CLI::App* rnd = app.add_subcommand("render", "Pictures of a run's frames (POV-Ray surfaces, 2-D particle snapshots), "
