@@ -3,9 +3,7 @@
 #include <cmath>
 #include <random>
 
-#include "core/checksum.hpp"
 #include "core/errors.hpp"
-#include "method/view_vtu.hpp"
 #include "scene/scene_builder.hpp"
 
 namespace sc {
@@ -153,8 +151,7 @@ void append(const dem::Grains<D>& from, dem::Grains<D>& to) {
 }  // namespace
 
 DemCaseParams read_dem_params(const CaseSpec& spec) {
-  const json own = spec.methods.contains("dem") ? spec.methods.at("dem") : json::object();
-  if (!own.is_object()) throw InputError(spec.file, "/methods/dem", "must be an object of DEM's parameters");
+  const json own = own_parameters(spec, "dem", "DEM");
   JsonObject o(own, "/methods/dem", spec.file);
   DemCaseParams p;
   p.friction = o.non_negative("friction", p.friction);
@@ -166,10 +163,7 @@ DemCaseParams read_dem_params(const CaseSpec& spec) {
   p.polydispersity = o.in_range("polydispersity", 0.0, 0.5, false, p.polydispersity);
   p.packed = o.boolean("packed", p.packed);
   o.finish();
-  if (!spec.tank) throw InputError(spec.file, "/tank", "method \"dem\" needs a tank (its closed sides are the contact walls)");
-  if (!spec.meshes.empty()) throw InputError(spec.file, "/meshes", "method \"dem\" fills blocks only, not meshes");
-  if (spec.porous) throw InputError(spec.file, "/porous", "method \"dem\" runs dry grains; it has no porous flow");
-  if (spec.adaptive) throw InputError(spec.file, "/adaptive", "method \"dem\" has no split and merge");
+  check_tank_scene(spec, "dem", "its closed sides are the contact walls", "runs dry grains; it has no porous flow");
   double g2 = 0.0;
   for (const double g : spec.gravity) g2 += g * g;
   if (g2 == 0.0) throw InputError(spec.file, "/gravity", "method \"dem\" needs gravity (the weight of the material sets the contact stiffness)");
@@ -184,8 +178,8 @@ DemCaseParams read_dem_params(const CaseSpec& spec) {
 template <int D>
 DemMethod<D>::DemMethod(dem::Grains<D> grains, const dem::Params& params, std::vector<dem::Plane<D>> walls,
                         const Vec<D>& gravity, double dt, int substeps)
-    : grains_(std::move(grains)),
-      last_good_(grains_),
+    : ParticleAdapter<D, dem::Grains<D>>(grains),
+      grains_(std::move(grains)),
       params_(params),
       walls_(std::move(walls)),
       gravity_(gravity),
@@ -194,7 +188,7 @@ DemMethod<D>::DemMethod(dem::Grains<D> grains, const dem::Params& params, std::v
 
 template <int D>
 double DemMethod<D>::step() {
-  last_good_ = grains_;
+  this->keep_last_good();
   const double h = dt_ / substeps_;
   for (int s = 0; s < substeps_; ++s) {
     {
@@ -224,49 +218,12 @@ ParticleView<D> DemMethod<D>::view_of(const dem::Grains<D>& g) const {
     density_[i] = g.mass(i) / g.volume(i);
     support_[i] = g.radius[i];
   }
-  ParticleView<D> view;
-  view.x = {g.x.data(), g.size()};
-  view.v = {g.v.data(), g.size()};
+  ParticleView<D> view = this->motion(g);
   view.m = mass_;
   view.phase = phase_;
   view.density = density_;
   view.support = support_;
   return view;
-}
-
-template <int D>
-ParticleView<D> DemMethod<D>::particles() const {
-  return view_of(grains_);
-}
-
-template <int D>
-std::string DemMethod<D>::checksum() const {
-  return state_checksum<D>(std::span<const Vec<D>>(grains_.x.data(), grains_.size()),
-                           std::span<const Vec<D>>(grains_.v.data(), grains_.size()));
-}
-
-template <int D>
-std::vector<StageTime> DemMethod<D>::stage_times() const {
-  std::vector<StageTime> out;
-  for (std::size_t s = 0; s < dem::dem_stage_names.size(); ++s)
-    out.push_back({std::string(dem::dem_stage_names[s]), timers_.seconds(static_cast<dem::DemStage>(s)),
-                   static_cast<dem::DemStage>(s) == dem::DemStage::Contacts ? steps_ * substeps_ : 0});
-  return out;
-}
-
-template <int D>
-std::string DemMethod<D>::vtu_frame() const {
-  return vtu_document<D>(particles());
-}
-
-template <int D>
-std::string DemMethod<D>::last_good_frame() const {
-  return vtu_document<D>(view_of(last_good_));
-}
-
-template <int D>
-void DemMethod<D>::write_checkpoint(const std::string&, const json&) const {
-  throw std::logic_error("method \"dem\" writes no checkpoints");
 }
 
 template <int D>

@@ -11,7 +11,7 @@
 #include "case/case_file.hpp"
 #include "core/stage_timers.hpp"
 #include "dem/dem_forces.hpp"
-#include "method/method.hpp"
+#include "method/adapter.hpp"
 
 namespace sc {
 
@@ -48,7 +48,7 @@ inline constexpr std::array<std::string_view, static_cast<std::size_t>(DemStage:
 }  // namespace dem
 
 template <int D>
-class DemMethod final : public Method<D> {
+class DemMethod final : public ParticleAdapter<D, dem::Grains<D>> {
  public:
   /// Grains, their contact parameters, the tank's planes, gravity and the case's step, split into
   /// `substeps` contact steps.
@@ -62,23 +62,22 @@ class DemMethod final : public Method<D> {
   long steps() const override { return steps_; }
   /// x, v, m (dry mass plus water held), phase (sand); the grain radius as support and the grain's
   /// mass over its volume as density.
-  ParticleView<D> particles() const override;
-  std::string checksum() const override;
-  std::vector<StageTime> stage_times() const override;
+  ParticleView<D> particles() const override { return view_of(grains_); }
+  /// The contacts' count is their contact steps since the run started.
+  std::vector<StageTime> stage_times() const override {
+    return stage_times_of(dem::dem_stage_names, timers_, dem::DemStage::Contacts, steps_ * substeps_);
+  }
   void reset_stage_times() override { timers_.reset(); }
-  std::string vtu_frame() const override;
-  std::string last_good_frame() const override;
-  bool writes_checkpoints() const override { return false; }
-  void write_checkpoint(const std::string& path, const json& run) const override;
 
   const dem::Grains<D>& grains() const { return grains_; }
   const dem::Params& params() const { return params_; }
   int substeps() const { return substeps_; }
 
  private:
-  ParticleView<D> view_of(const dem::Grains<D>& g) const;
+  const dem::Grains<D>& state() const override { return grains_; }
+  ParticleView<D> view_of(const dem::Grains<D>& g) const override;
 
-  dem::Grains<D> grains_, last_good_;
+  dem::Grains<D> grains_;
   dem::Params params_;
   std::vector<dem::Plane<D>> walls_;
   Vec<D> gravity_;

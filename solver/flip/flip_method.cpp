@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "core/checksum.hpp"
-#include "method/view_vtu.hpp"
 #include "scene/scene_builder.hpp"
 
 namespace sc {
@@ -19,8 +17,7 @@ long whole_cells(double extent, double h) {
 }  // namespace
 
 FlipCaseParams read_flip_params(const CaseSpec& spec) {
-  const json own = spec.methods.contains("flip") ? spec.methods.at("flip") : json::object();
-  if (!own.is_object()) throw InputError(spec.file, "/methods/flip", "must be an object of FLIP's parameters");
+  const json own = own_parameters(spec, "flip", "FLIP");
   JsonObject o(own, "/methods/flip", spec.file);
   FlipCaseParams p;
   p.cell_size = o.in_range("cell_size", 1.0, 4.0, false, p.cell_size);
@@ -30,10 +27,7 @@ FlipCaseParams read_flip_params(const CaseSpec& spec) {
   p.cg_max_iterations = o.integer("cg_max_iterations", 1, 1000000, p.cg_max_iterations);
   p.jitter = o.in_range("jitter", 0.0, 1.0, false, p.jitter);
   o.finish();
-  if (!spec.tank) throw InputError(spec.file, "/tank", "method \"flip\" needs a tank (its walls are the grid's)");
-  if (!spec.meshes.empty()) throw InputError(spec.file, "/meshes", "method \"flip\" fills blocks only, not meshes");
-  if (spec.porous) throw InputError(spec.file, "/porous", "method \"flip\" has no porous flow");
-  if (spec.adaptive) throw InputError(spec.file, "/adaptive", "method \"flip\" has no split and merge");
+  check_tank_scene(spec, "flip", "its walls are the grid's", "has no porous flow");
   for (std::size_t b = 0; b < spec.blocks.size(); ++b)
     if (spec.blocks[b].fill == BlockFill::PorousBed)
       throw InputError(spec.file, "/blocks/" + std::to_string(b) + "/phase",
@@ -81,27 +75,20 @@ flip::FlipParams<D> flip_params(const CaseSpec& spec, const FlipCaseParams& own,
 }
 
 template <int D>
-FlipMethod<D>::FlipMethod(flip::FlipSolver<D> solver) : solver_(std::move(solver)), last_good_(solver_.particles()) {}
+FlipMethod<D>::FlipMethod(flip::FlipSolver<D> solver)
+    : ParticleAdapter<D, flip::FlipParticles<D>>(solver.particles()), solver_(std::move(solver)) {}
 
 template <int D>
 double FlipMethod<D>::step() {
-  last_good_ = solver_.particles();
+  this->keep_last_good();
   const double dt = solver_.step();
   projection_iterations_ += solver_.projection_stats().iterations;
   return dt;
 }
 
 template <int D>
-void FlipMethod<D>::reset_stage_times() {
-  solver_.timers().reset();
-  projection_iterations_ = 0;
-}
-
-template <int D>
 ParticleView<D> FlipMethod<D>::view_of(const flip::FlipParticles<D>& ps) const {
-  ParticleView<D> view;
-  view.x = {ps.x.data(), ps.size()};
-  view.v = {ps.v.data(), ps.size()};
+  ParticleView<D> view = this->motion(ps);
   view.m = ps.m;
   view.phase = ps.phase;
   return view;
@@ -129,47 +116,10 @@ ParticleView<D> FlipMethod<D>::particles() const {
 }
 
 template <int D>
-std::string FlipMethod<D>::checksum() const {
-  const flip::FlipParticles<D>& ps = solver_.particles();
-  return state_checksum<D>(std::span<const Vec<D>>(ps.x.data(), ps.size()),
-                           std::span<const Vec<D>>(ps.v.data(), ps.size()));
-}
-
-template <int D>
-std::vector<StageTime> FlipMethod<D>::stage_times() const {
-  std::vector<StageTime> out;
-  for (std::size_t s = 0; s < flip::flip_stage_names.size(); ++s) {
-    const auto stage = static_cast<flip::FlipStage>(s);
-    out.push_back({std::string(flip::flip_stage_names[s]), solver_.timers().seconds(stage),
-                   stage == flip::FlipStage::Projection ? projection_iterations_ : 0});
-  }
-  return out;
-}
-
-template <int D>
-std::string FlipMethod<D>::vtu_frame() const {
-  return vtu_document<D>(particles());
-}
-
-template <int D>
-std::string FlipMethod<D>::last_good_frame() const {
-  return vtu_document<D>(view_of(last_good_));
-}
-
-template <int D>
-void FlipMethod<D>::write_checkpoint(const std::string&, const json&) const {
-  throw std::logic_error("method \"flip\" writes no checkpoints");
-}
-
-template <int D>
 std::unique_ptr<Method<D>> make_flip_method(const CaseSpec& spec, double dx) {
   const FlipCaseParams own = read_flip_params(spec);
   const flip::FlipParams<D> params = flip_params<D>(spec, own, dx);
-  for (std::size_t b = 0; b < spec.blocks.size(); ++b)
-    for (int d = 0; d < D; ++d)
-      if (spec.blocks[b].min[d] < params.tank_lo[d] || spec.blocks[b].max[d] > params.tank_hi[d])
-        throw InputError(spec.file, "/blocks/" + std::to_string(b),
-                         "method \"flip\": the block must lie inside the grid (the tank, open sides to the domain)");
+  check_blocks_inside<D>(spec, "flip", "the grid", params.tank_lo, params.tank_hi);
   flip::FlipParticles<D> ps;
   for (std::size_t b = 0; b < spec.blocks.size(); ++b) {
     const BlockSpec& block = spec.blocks[b];

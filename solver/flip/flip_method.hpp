@@ -8,7 +8,7 @@
 
 #include "flip/flip_solver.hpp"
 #include "case/case_file.hpp"
-#include "method/method.hpp"
+#include "method/adapter.hpp"
 
 namespace sc {
 
@@ -40,7 +40,7 @@ template <int D>
 flip::FlipParams<D> flip_params(const CaseSpec& spec, const FlipCaseParams& own, double dx);
 
 template <int D>
-class FlipMethod final : public Method<D> {
+class FlipMethod final : public ParticleAdapter<D, flip::FlipParticles<D>> {
  public:
   explicit FlipMethod(flip::FlipSolver<D> solver);
 
@@ -52,22 +52,23 @@ class FlipMethod final : public Method<D> {
   /// x, v, m, phase; the pressure interpolated from the cell centres; the density of the
   /// particle's phase (the grid is incompressible); the support of the transfer kernel (Δx).
   ParticleView<D> particles() const override;
-  std::string checksum() const override;
   /// The solver's stage times; the projection's count is its CG iterations.
-  std::vector<StageTime> stage_times() const override;
-  void reset_stage_times() override;
-  std::string vtu_frame() const override;
-  std::string last_good_frame() const override;
-  bool writes_checkpoints() const override { return false; }
-  void write_checkpoint(const std::string& path, const json& run) const override;
+  std::vector<StageTime> stage_times() const override {
+    return stage_times_of(flip::flip_stage_names, solver_.timers(), flip::FlipStage::Projection, projection_iterations_);
+  }
+  void reset_stage_times() override {
+    solver_.timers().reset();
+    projection_iterations_ = 0;
+  }
 
   const flip::FlipSolver<D>& solver() const { return solver_; }
 
  private:
-  ParticleView<D> view_of(const flip::FlipParticles<D>& ps) const;
+  const flip::FlipParticles<D>& state() const override { return solver_.particles(); }
+  /// x, v, m and phase: the fields of the last good frame, and those particles() adds to.
+  ParticleView<D> view_of(const flip::FlipParticles<D>& ps) const override;
 
   flip::FlipSolver<D> solver_;
-  flip::FlipParticles<D> last_good_;
   long projection_iterations_ = 0;  // CG iterations since the last reset_stage_times
   mutable std::vector<double> pressure_, density_, support_;  // fields of the last particles() call
 };

@@ -2,9 +2,7 @@
 
 #include <cmath>
 
-#include "core/checksum.hpp"
 #include "core/errors.hpp"
-#include "method/view_vtu.hpp"
 #include "mpm/exchange.hpp"
 #include "mpm/grid_field.hpp"
 #include "scene/scene_builder.hpp"
@@ -47,8 +45,7 @@ void seed_block(const BlockSpec& block, double dx, double rho, mpm::Particles<D>
 }  // namespace
 
 MpmCaseParams read_mpm_params(const CaseSpec& spec) {
-  const json own = spec.methods.contains("mpm") ? spec.methods.at("mpm") : json::object();
-  if (!own.is_object()) throw InputError(spec.file, "/methods/mpm", "must be an object of MPM's parameters");
+  const json own = own_parameters(spec, "mpm", "MPM");
   JsonObject o(own, "/methods/mpm", spec.file);
   MpmCaseParams p;
   p.cell_size = o.in_range("cell_size", 1.0, 4.0, false, p.cell_size);
@@ -61,10 +58,7 @@ MpmCaseParams read_mpm_params(const CaseSpec& spec) {
   p.porosity = o.in_range("porosity", 0.0, 1.0, true, p.porosity);
   p.hydraulic_conductivity = o.positive("hydraulic_conductivity", p.hydraulic_conductivity);
   o.finish();
-  if (!spec.tank) throw InputError(spec.file, "/tank", "method \"mpm\" needs a tank (its sides are the grid's walls)");
-  if (!spec.meshes.empty()) throw InputError(spec.file, "/meshes", "method \"mpm\" fills blocks only, not meshes");
-  if (spec.porous) throw InputError(spec.file, "/porous", "method \"mpm\" models the pores by its two grids, not by a porous section");
-  if (spec.adaptive) throw InputError(spec.file, "/adaptive", "method \"mpm\" has no split and merge");
+  check_tank_scene(spec, "mpm", "its sides are the grid's walls", "models the pores by its two grids, not by a porous section");
   if (spec.blocks.empty()) throw InputError(spec.file, "/blocks", "method \"mpm\" needs at least one block");
   for (std::size_t b = 0; b < spec.blocks.size(); ++b)
     if (spec.blocks[b].fill == BlockFill::PorousBed)
@@ -115,7 +109,7 @@ mpm::Params<D> mpm_params(const CaseSpec& spec, const MpmCaseParams& own, double
 
 template <int D>
 MpmMethod<D>::MpmMethod(mpm::MpmSolver<D> solver, double dt, double support)
-    : solver_(std::move(solver)), last_good_(solver_.particles()), dt_(dt), support_(support) {}
+    : ParticleAdapter<D, mpm::Particles<D>>(solver.particles()), solver_(std::move(solver)), dt_(dt), support_(support) {}
 
 template <int D>
 void MpmMethod<D>::check_state() const {
@@ -130,17 +124,11 @@ void MpmMethod<D>::check_state() const {
 
 template <int D>
 double MpmMethod<D>::step() {
-  last_good_ = solver_.particles();
+  this->keep_last_good();
   substeps_ += solver_.advance(dt_);
   check_state();
   ++steps_;
   return dt_;
-}
-
-template <int D>
-void MpmMethod<D>::reset_stage_times() {
-  solver_.timers().reset();
-  substeps_ = 0;
 }
 
 template <int D>
@@ -156,9 +144,7 @@ ParticleView<D> MpmMethod<D>::view_of(const mpm::Particles<D>& ps) const {
     density_[i] = ps.m[i] / (ps.J[i] * ps.V0[i]);
   }
   pressure_ = mpm::through_grid<D>(params.grid, ps, pressure_);
-  ParticleView<D> view;
-  view.x = {ps.x.data(), ps.size()};
-  view.v = {ps.v.data(), ps.size()};
+  ParticleView<D> view = this->motion(ps);
   view.m = ps.m;
   view.phase = ps.phase;
   view.pressure = pressure_;
@@ -169,55 +155,13 @@ ParticleView<D> MpmMethod<D>::view_of(const mpm::Particles<D>& ps) const {
 }
 
 template <int D>
-ParticleView<D> MpmMethod<D>::particles() const {
-  return view_of(solver_.particles());
-}
-
-template <int D>
-std::string MpmMethod<D>::checksum() const {
-  const mpm::Particles<D>& ps = solver_.particles();
-  return state_checksum<D>(std::span<const Vec<D>>(ps.x.data(), ps.size()), std::span<const Vec<D>>(ps.v.data(), ps.size()));
-}
-
-template <int D>
-std::vector<StageTime> MpmMethod<D>::stage_times() const {
-  std::vector<StageTime> out;
-  for (std::size_t s = 0; s < mpm::mpm_stage_names.size(); ++s) {
-    const auto stage = static_cast<mpm::MpmStage>(s);
-    out.push_back({std::string(mpm::mpm_stage_names[s]), solver_.timers().seconds(stage),
-                   stage == mpm::MpmStage::Transfer ? substeps_ : 0});
-  }
-  return out;
-}
-
-template <int D>
-std::string MpmMethod<D>::vtu_frame() const {
-  return vtu_document<D>(particles());
-}
-
-template <int D>
-std::string MpmMethod<D>::last_good_frame() const {
-  return vtu_document<D>(view_of(last_good_));
-}
-
-template <int D>
-void MpmMethod<D>::write_checkpoint(const std::string&, const json&) const {
-  throw std::logic_error("method \"mpm\" writes no checkpoints");
-}
-
-template <int D>
 std::unique_ptr<Method<D>> make_mpm_method(const CaseSpec& spec, double dx) {
   const MpmCaseParams own = read_mpm_params(spec);
   const mpm::Params<D> params = mpm_params<D>(spec, own, dx);
+  check_blocks_inside<D>(spec, "mpm", "the grid's walls", params.wall_lo, params.wall_hi);
   mpm::Particles<D> ps;
-  for (std::size_t b = 0; b < spec.blocks.size(); ++b) {
-    const BlockSpec& block = spec.blocks[b];
-    for (int d = 0; d < D; ++d)
-      if (block.min[d] < params.wall_lo[d] || block.max[d] > params.wall_hi[d])
-        throw InputError(spec.file, "/blocks/" + std::to_string(b),
-                         "method \"mpm\": the block must lie inside the grid's walls (the tank, open sides to the domain)");
+  for (const BlockSpec& block : spec.blocks)
     seed_block<D>(block, dx, block.fill == BlockFill::Sand ? spec.sand.rest_density : spec.water.rest_density, ps);
-  }
   return std::make_unique<MpmMethod<D>>(mpm::MpmSolver<D>(params, std::move(ps)), spec.dt_max, spec.support_ratio * dx);
 }
 

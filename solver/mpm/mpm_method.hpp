@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "case/case_file.hpp"
-#include "method/method.hpp"
+#include "method/adapter.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace sc {
@@ -42,7 +42,7 @@ template <int D>
 mpm::Params<D> mpm_params(const CaseSpec& spec, const MpmCaseParams& own, double dx);
 
 template <int D>
-class MpmMethod final : public Method<D> {
+class MpmMethod final : public ParticleAdapter<D, mpm::Particles<D>> {
  public:
   /// The solver, the case's step (divided into stable substeps) and the support radius the view reports.
   MpmMethod(mpm::MpmSolver<D> solver, double dt, double support);
@@ -55,24 +55,24 @@ class MpmMethod final : public Method<D> {
   /// x, v, m, phase; pressure −tr τ / (D J) (water: the equation of state at J), seen through the
   /// grid (mpm/grid_field.hpp); density
   /// m / (J V0); the case's support radius; the sand's saturation (0 for water).
-  ParticleView<D> particles() const override;
-  std::string checksum() const override;
+  ParticleView<D> particles() const override { return view_of(solver_.particles()); }
   /// The solver's stage times; the transfer's count is its substeps.
-  std::vector<StageTime> stage_times() const override;
-  void reset_stage_times() override;
-  std::string vtu_frame() const override;
-  std::string last_good_frame() const override;
-  bool writes_checkpoints() const override { return false; }
-  void write_checkpoint(const std::string& path, const json& run) const override;
+  std::vector<StageTime> stage_times() const override {
+    return stage_times_of(mpm::mpm_stage_names, solver_.timers(), mpm::MpmStage::Transfer, substeps_);
+  }
+  void reset_stage_times() override {
+    solver_.timers().reset();
+    substeps_ = 0;
+  }
 
   const mpm::MpmSolver<D>& solver() const { return solver_; }
 
  private:
-  ParticleView<D> view_of(const mpm::Particles<D>& ps) const;
+  const mpm::Particles<D>& state() const override { return solver_.particles(); }
+  ParticleView<D> view_of(const mpm::Particles<D>& ps) const override;
   void check_state() const;
 
   mpm::MpmSolver<D> solver_;
-  mpm::Particles<D> last_good_;
   double dt_, support_;
   long steps_ = 0, substeps_ = 0;
   mutable std::vector<double> pressure_, density_, support_field_;  // fields of the last particles() call
