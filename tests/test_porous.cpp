@@ -9,6 +9,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include "adaptive/split_merge.hpp"
+#include "boundary/wall_pressure.hpp"
 #include "porous/capillary.hpp"
 #include "porous/darcy.hpp"
 #include "porous/partial_water_pressure.hpp"
@@ -975,6 +976,67 @@ BOOST_AUTO_TEST_CASE(partial_water_accelerates_like_a_full_particle_at_its_place
   BOOST_TEST(rho_parcel == rho_full, boost::test_tools::tolerance(1e-12));
   BOOST_TEST(a_full[0] < 0.0);  // pushed down the pressure gradient
   BOOST_TEST((a_parcel - a_full).norm() <= 0.1 * a_full.norm());
+}
+
+BOOST_AUTO_TEST_CASE(a_parcel_filled_back_inside_the_bed_face_regains_its_pressure_gradually) {
+  // How capillary_rise blew up at 0.005 m, in a small scene: a fixed porous bed (x < 0.05) beside a
+  // pond of full water at 1 kPa, and a water particle that drifted into the bed's face while it
+  // was a parcel (no stiffness of its own), 0.55 spacings from the bed's first row. The bed fills
+  // it back across kPartialWaterFraction of a full particle. At its place its own state equation
+  // (eq 7 with the rest density of its mass) reads far more than the pond's pressure; with a switch
+  // at the threshold it took that pressure in the step of filling that crossed it, and its
+  // acceleration jumped by thousands of m/s² (parcels were thrown out of the pools at metres per
+  // second). Its pressure and acceleration must be continuous in its mass: across the threshold
+  // (±1e-6 of a full mass, a fraction of one step's filling) they change by less than 1 %, and
+  // they rise towards its own state equation only as it fills (own_pressure_weight).
+  const PorousParams p = test_params();
+  ParticleSet<2> ps;
+  add_block(ps, p, Phase::Boundary, {0.0, 0.0}, {0.05, 0.1}, 1.0);
+  add_block(ps, p, Phase::Water, {0.05, 0.0}, {0.12, 0.1}, 0.0);
+  std::size_t parcel = ps.size();
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.phase_of(i) == Phase::Water && std::abs(ps.x[i][0] - 0.055) < 1e-9 && std::abs(ps.x[i][1] - 0.045) < 1e-9)
+      parcel = i;
+  BOOST_TEST_REQUIRE(parcel < ps.size());
+  ps.x[parcel][0] = 0.045 + 0.55 * kDx;  // into the bed's face: 0.55 spacings from its first row
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  EquationOfState eos;
+  eos.sound_speed = 15.0;
+  WaterParams water;
+  water.gradient_correction = false;
+  const double w0 = kernel::density_kernel<2>(p.density_kernel, 0.0, p.water_support);
+  struct State {
+    double own, p;  // its state-equation pressure at its place, the pressure it takes
+    Vec<2> a;
+  };
+  const auto state_at = [&](double fraction) {
+    ps.m[parcel] = fraction * p.water_mass;
+    ps.rho0[parcel] = partial_water_rest_density(kRho, p.water_mass, ps.m[parcel], w0);
+    compute_density(ps, nb, p.density_kernel, kRho);
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      ps.force[i].setZero();
+      if (ps.moves(i)) ps.p[i] = i == parcel ? eos.pressure(ps.rho[i], ps.rho0[i]) : 1000.0;
+    }
+    const double own = ps.p[parcel];
+    set_partial_water_pressure(ps, nb, p.water_mass);
+    set_partial_water_density(ps, p.water_mass, kRho);
+    extrapolate_wall_pressure(ps, nb, Vec<2>(Vec<2>::Zero()), eos);
+    add_water_forces(ps, nb, water, {});
+    return State{own, ps.p[parcel], Vec<2>(ps.force[parcel] / ps.m[parcel])};
+  };
+  const State below = state_at(kPartialWaterFraction - 1e-6), above = state_at(kPartialWaterFraction + 1e-6);
+  const State three_quarters = state_at(0.75), full = state_at(1.0);
+  BOOST_TEST_MESSAGE("own pressure at the threshold " << above.own << " Pa; taken " << below.p << " / " << above.p
+                     << " Pa; acceleration " << below.a.norm() << " / " << above.a.norm() << " m/s^2; at 3/4 "
+                     << three_quarters.p << " Pa, full " << full.p << " Pa");
+  BOOST_TEST(above.own > 20.0 * 1000.0);  // the compression the parcel's place holds
+  BOOST_TEST(below.p == 1000.0, boost::test_tools::tolerance(1e-12));  // a parcel: the pond's pressure
+  BOOST_TEST(std::abs(above.p - below.p) <= 0.01 * below.p);
+  BOOST_TEST((above.a - below.a).norm() <= 0.01 * below.a.norm());
+  BOOST_TEST(three_quarters.p > above.p);  // it regains its own pressure as it fills
+  BOOST_TEST(three_quarters.p < full.p);
+  BOOST_TEST(full.p == full.own);  // a full particle keeps its state equation, bitwise
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,7 +1,9 @@
 // Pressure and density of partial water particles: water particles much lighter than a full one,
 // because porous absorption is draining them or emission is filling them (solver/porous/porous_flow.hpp).
 #pragma once
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/particle_set.hpp"
 #include "neighbours/neighbour_grid.hpp"
@@ -38,35 +40,70 @@ bool is_partial_water(const ParticleSet<D>& ps, std::size_t i, double m0) {
   return ps.phase_of(i) == Phase::Water && ps.m[i] < kPartialWaterFraction * full_mass_at_level(ps, i, m0);
 }
 
-/// Replaces the state-equation pressure of every partial water particle i by the pressure of the
-/// full water around it, the Shepard average p_i = Σ_j V_j p_j W_ij / Σ_j V_j W_ij over its full
-/// water neighbours j (poly6 kernel, support h_i); one without full water neighbours (in the pores
-/// of sand, or a droplet) keeps its own pressure, which holds it off walls and sand. Ours, not in
-/// the thesis or Lenaerts et al. 2008: a partial particle is a parcel of the surrounding water, but
-/// its own summation density (eq 6) is dominated by its neighbours (its self term is small), so a
-/// neighbour closer than the lattice spacing drives ρ_i/ρ0_i far above 1 and the Tait pressure
-/// (×(ρ/ρ0)^7) with it, far above the pressure of the water around it, which throws the parcel
-/// out (test porous/partial_water_takes_the_pressure_of_the_water_around_it). Full particles keep
-/// their own pressure. Gather: reads the pressures of full particles only,
-/// writes those of partial ones.
+/// Weight of a water particle's own state equation in its pressure and density (ours [I]): 0 for a
+/// parcel (is_partial_water: below kPartialWaterFraction of a full particle at its level), 1 for a
+/// full particle, linear in the mass between. Porous exchange changes a particle's mass by a small
+/// amount per step, so its pressure must be continuous in the mass. With a switch at
+/// kPartialWaterFraction, a parcel that the bed filled back across it went in one step from the
+/// pressure of the water around it to the state-equation pressure of its own compression. That
+/// compression is built up while it is a parcel: with no stiffness of its own it drifts into the
+/// face of the porous bed and its neighbours close in (within about half a spacing of the bed's
+/// particles), so at the switch ρ_i/ρ0_i reads tens of percent above 1 and the Tait law gives a
+/// hundred times the pressure of the pond; the parcel and its neighbours were thrown out of the
+/// pools at metres per second in one step (capillary_rise at 0.005 m; test
+/// porous/a_parcel_filled_back_inside_the_bed_face_regains_its_pressure_gradually). Ramped over the
+/// mass between the parcel's threshold and a full particle, the pressure of that compression builds
+/// up over the filling, which takes many sound-crossing times of a particle, so the particle and its
+/// neighbours move apart as it builds instead of being kicked apart. A full particle (weight exactly
+/// 1) is untouched, bitwise.
+template <int D>
+double own_pressure_weight(const ParticleSet<D>& ps, std::size_t i, double m0) {
+  const double fraction = ps.m[i] / full_mass_at_level(ps, i, m0);
+  return std::clamp((fraction - kPartialWaterFraction) / (1.0 - kPartialWaterFraction), 0.0, 1.0);
+}
+
+/// Replaces the state-equation pressure P_i of every water particle i lighter than a full one by
+/// P_i^env + w_i (P_i − P_i^env), w_i = own_pressure_weight: a parcel (w_i = 0) takes the pressure
+/// P_i^env of the full water around it, the Shepard average Σ_j V_j p_j W_ij / Σ_j V_j W_ij over its
+/// water neighbours j ≠ i that are not parcels (their state-equation pressures; poly6 kernel,
+/// support h_i), and a particle between a parcel and a full one the mix, continuous in its mass
+/// (own_pressure_weight says why). One without such neighbours (in the pores of sand, or a droplet)
+/// keeps its own pressure, which holds it off walls and sand. Ours, not in the thesis or Lenaerts
+/// et al. 2008: a partial particle is a parcel of the surrounding water, but its own summation
+/// density (eq 6) is dominated by its neighbours (its self term is small), so a neighbour closer
+/// than the lattice spacing drives ρ_i/ρ0_i far above 1 and the Tait pressure (×(ρ/ρ0)^7) with it,
+/// far above the pressure of the water around it, which throws the parcel out (test
+/// porous/partial_water_takes_the_pressure_of_the_water_around_it). Full particles keep their own
+/// pressure. Gather: the averages read only state-equation pressures (the first pass writes them
+/// aside), the second pass writes.
 template <int D>
 void set_partial_water_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double m0) {
   const auto n = static_cast<std::int64_t>(ps.size());
+  std::vector<double> mixed(ps.size());
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
-    if (!is_partial_water(ps, i, m0)) continue;
+    mixed[i] = ps.p[i];
+    if (ps.phase_of(i) != Phase::Water) continue;
+    const double own = own_pressure_weight(ps, i, m0);
+    if (own >= 1.0) continue;
     double weight = 0.0, sum = 0.0;
     for (const auto j : nb.of(i)) {
-      if (ps.phase_of(j) != Phase::Water || is_partial_water(ps, j, m0)) continue;
+      if (j == static_cast<std::size_t>(i) || ps.phase_of(j) != Phase::Water || is_partial_water(ps, j, m0)) continue;
       const double w = ps.volume(j) * kernel::poly6<D>((ps.x[i] - ps.x[j]).norm(), ps.h[i]);
       weight += w;
       sum += w * ps.p[j];
     }
-    if (weight > 0.0) ps.p[i] = sum / weight;
+    if (weight > 0.0) {
+      const double env = sum / weight;
+      mixed[i] = own > 0.0 ? env + own * (ps.p[i] - env) : env;
+    }
   }
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) ps.p[i] = mixed[i];
 }
 
-/// Replaces the summation density (eq 6) of every partial water particle i by the density a full
+/// Replaces the summation density (eq 6) of every water particle i lighter than a full one by
+/// ρ_i + (1 − w_i)(ρ^f − ρ0_i), w_i = own_pressure_weight: for a parcel (w_i = 0) the density a full
 /// particle would read at its place, ρ_i + ρ^f − ρ0_i = ρ_i + (m_full − m_i) W(0, h_i) (its rest
 /// density is partial_water_rest_density), so that its
 /// volume m_i/ρ_i in the pressure, viscosity and contact sums is the share of the water it is a
@@ -76,14 +113,18 @@ void set_partial_water_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, 
 /// so its own summation density can be a small fraction of ρ^f and its volume m_i/ρ_i as large as
 /// a full particle's for a few percent of the mass: the pressure around it would then accelerate it
 /// far more than a full particle (test porous/partial_water_accelerates_like_a_full_particle_at_its_place).
-/// Call after the pressures are set (a parcel without full neighbours keeps the state-equation
-/// pressure of its own ρ_i/ρ0_i).
+/// Between a parcel and a full particle the correction fades with the same weight as the pressure,
+/// so that the volume, like the pressure, is continuous in the mass. Call after the pressures are
+/// set (a parcel without full neighbours keeps the state-equation pressure of its own ρ_i/ρ0_i).
 template <int D>
 void set_partial_water_density(ParticleSet<D>& ps, double m0, double fluid_density) {
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i)
-    if (is_partial_water(ps, i, m0)) ps.rho[i] += fluid_density - ps.rho0[i];
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (ps.phase_of(i) != Phase::Water) continue;
+    const double own = own_pressure_weight(ps, i, m0);
+    if (own < 1.0) ps.rho[i] += (1.0 - own) * (fluid_density - ps.rho0[i]);
+  }
 }
 
 }  // namespace sc
