@@ -74,32 +74,29 @@ double own_pressure_weight(const ParticleSet<D>& ps, std::size_t i, double m0) {
 /// than the lattice spacing drives ρ_i/ρ0_i far above 1 and the Tait pressure (×(ρ/ρ0)^7) with it,
 /// far above the pressure of the water around it, which throws the parcel out (test
 /// porous/partial_water_takes_the_pressure_of_the_water_around_it). Full particles keep their own
-/// pressure. Gather: the averages read only state-equation pressures (the first pass writes them
-/// aside), the second pass writes.
+/// pressure. Gather: the averages read only state-equation pressures (the new ones of the lighter
+/// particles are kept aside until all are computed).
 template <int D>
 void set_partial_water_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double m0) {
-  const auto n = static_cast<std::int64_t>(ps.size());
-  std::vector<double> mixed(ps.size());
-#pragma omp parallel for schedule(dynamic, 256)
-  for (std::int64_t i = 0; i < n; ++i) {
-    mixed[i] = ps.p[i];
-    if (ps.phase_of(i) != Phase::Water) continue;
-    const double own = own_pressure_weight(ps, i, m0);
-    if (own >= 1.0) continue;
+  std::vector<std::size_t> lighter;  // the water particles lighter than a full one, in index order
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.phase_of(i) == Phase::Water && own_pressure_weight(ps, i, m0) < 1.0) lighter.push_back(i);
+  std::vector<double> mixed(lighter.size());
+  const auto n = static_cast<std::int64_t>(lighter.size());
+#pragma omp parallel for schedule(dynamic, 64)
+  for (std::int64_t k = 0; k < n; ++k) {
+    const std::size_t i = lighter[k];
     double weight = 0.0, sum = 0.0;
     for (const auto j : nb.of(i)) {
-      if (j == static_cast<std::size_t>(i) || ps.phase_of(j) != Phase::Water || is_partial_water(ps, j, m0)) continue;
+      if (j == i || ps.phase_of(j) != Phase::Water || is_partial_water(ps, j, m0)) continue;
       const double w = ps.volume(j) * kernel::poly6<D>((ps.x[i] - ps.x[j]).norm(), ps.h[i]);
       weight += w;
       sum += w * ps.p[j];
     }
-    if (weight > 0.0) {
-      const double env = sum / weight;
-      mixed[i] = own > 0.0 ? env + own * (ps.p[i] - env) : env;
-    }
+    const double own = own_pressure_weight(ps, i, m0), env = weight > 0.0 ? sum / weight : ps.p[i];
+    mixed[k] = own > 0.0 ? env + own * (ps.p[i] - env) : env;
   }
-#pragma omp parallel for schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) ps.p[i] = mixed[i];
+  for (std::size_t k = 0; k < lighter.size(); ++k) ps.p[lighter[k]] = mixed[k];
 }
 
 /// Replaces the summation density (eq 6) of every water particle i lighter than a full one by
