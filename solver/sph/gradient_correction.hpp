@@ -9,6 +9,7 @@
 #include "core/smallest_eigenvalue.hpp"
 #include "neighbours/neighbour_grid.hpp"
 #include "sph/kernels.hpp"
+#include "sph/neighbour_batch.hpp"
 
 namespace sc {
 
@@ -45,24 +46,37 @@ double correction_weight(const Mat<D>& S, double none, double full) {
 /// The moment matrix M_i = Σ_j V_j ∇W_ij ⊗ (x_j − x_i) of gradient_correction, with the spiky
 /// gradient averaged over both supports. Each term is −V_j W'(r)/r d dᵀ (d = x_i − x_j): symmetric,
 /// so only the upper triangle is summed (with one division per pair) and then mirrored, and M is
-/// exactly symmetric.
+/// exactly symmetric. The pairs go in batches (sph/neighbour_batch.hpp): the factor
+/// −m_j W'(r) / (ρ_j r) of a batch is computed in one vectorised loop when every neighbour has
+/// the support h_i, pair by pair otherwise.
 template <int D>
 Mat<D> moment_matrix(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i) {
   std::array<double, D * (D + 1) / 2> upper{};  // row by row; a local, so it stays in registers
-  const Vec<D> xi = ps.x[i];
   const kernel::Support<D> si(ps.h[i]);
-  const Vec<D>* x = ps.x.data();
-  const double *h = ps.h.data(), *m = ps.m.data(), *rho = ps.rho.data();
-  for (const auto j : nb.of(i)) {
-    const Vec<D> d = xi - x[j];
-    const double r = d.norm();
-    if (r <= 0.0) continue;  // i itself: no direction
-    const double dw = kernel::pair_average([&](const kernel::Support<D>& s) { return kernel::spiky_derivative<D>(r, s); }, si, h[j]);
-    const Vec<D> wd = (-(m[j] * dw) / (rho[j] * r)) * d;
-    int k = 0;
-    for (int a = 0; a < D; ++a)
-      for (int b = a; b < D; ++b) upper[k++] += wd[a] * d[b];
-  }
+  for_each_batch<D>(nb.of(i), ps.x[i], ps.x.data(), [&](const NeighbourBatch<D>& b) {
+    constexpr int K = NeighbourBatch<D>::kSize;
+    alignas(32) double hj[K], mj[K], rhoj[K], factor[K];
+    b.gather(ps.h.data(), hj);
+    b.gather(ps.m.data(), mj);
+    b.gather(ps.rho.data(), rhoj);
+    const auto factor_of = [&](int k, double dw) {  // i itself (r = 0) has no direction: no term
+      const double r = b.r[k] > 0.0 ? b.r[k] : 1.0;
+      const double f = -(mj[k] * dw) / (rhoj[k] * r);
+      return b.r[k] > 0.0 ? f : 0.0;
+    };
+    if (b.all_equal(hj, si.h)) {
+      for (int k = 0; k < b.size; ++k) factor[k] = factor_of(k, kernel::spiky_derivative<D>(b.r[k], si));
+    } else {
+      for (int k = 0; k < b.size; ++k)
+        factor[k] = factor_of(k, kernel::pair_average([&](const kernel::Support<D>& s) { return kernel::spiky_derivative<D>(b.r[k], s); }, si, hj[k]));
+    }
+    for (int k = 0; k < b.size; ++k) {
+      if (!(b.r[k] > 0.0)) continue;
+      int c = 0;
+      for (int a = 0; a < D; ++a)
+        for (int e = a; e < D; ++e) upper[c++] += (factor[k] * b.d[a][k]) * b.d[e][k];
+    }
+  });
   Mat<D> M;
   int k = 0;
   for (int a = 0; a < D; ++a)

@@ -70,6 +70,9 @@ struct Support {
         spiky_derivative(constant::spiky_derivative<D>(s)), viscosity_laplacian(constant::viscosity_laplacian<D>(s)) {}
 };
 
+// The kernels taking a Support compute both sides and then choose (no branch), so that pair
+// loops over batches of neighbours vectorise (sph/neighbour_batch.hpp); same values and bits.
+
 /// The support h of a neighbour of a particle whose support is `si`: si itself when h is its
 /// radius (the usual case), otherwise a new one (with a lookup).
 template <int D>
@@ -80,9 +83,9 @@ inline Support<D> support_of(double h, const Support<D>& si) {
 /// poly6: W = 315/(64π h⁹)(h²−r²)³ in 3-D, 4/(π h⁸)(h²−r²)³ in 2-D.
 template <int D>
 inline double poly6(double r, const Support<D>& s) {
-  if (r >= s.h) return 0.0;
   const double q = s.h * s.h - r * r;
-  return s.poly6 * q * q * q;
+  const double w = s.poly6 * q * q * q;
+  return r >= s.h ? 0.0 : w;
 }
 template <int D>
 inline double poly6(double r, double h) {
@@ -112,9 +115,9 @@ inline double poly6_laplacian(double r, double h) {
 /// spiky: W = 15/(π h⁶)(h−r)³ in 3-D, 10/(π h⁵)(h−r)³ in 2-D.
 template <int D>
 inline double spiky(double r, const Support<D>& s) {
-  if (r >= s.h) return 0.0;
   const double q = s.h - r;
-  return s.spiky * q * q * q;
+  const double w = s.spiky * q * q * q;
+  return r >= s.h ? 0.0 : w;
 }
 template <int D>
 inline double spiky(double r, double h) {
@@ -133,9 +136,16 @@ inline double spiky_derivative(double r, double h) {
 
 template <int D>
 inline double spiky_derivative(double r, const Support<D>& s) {
-  if (r >= s.h) return 0.0;
   const double q = s.h - r;
-  return s.spiky_derivative * q * q;
+  const double w = s.spiky_derivative * q * q;
+  return r >= s.h ? 0.0 : w;
+}
+
+/// The factor W'(r)/r of the spiky gradient (below), 0 where the gradient is zero.
+template <int D>
+inline double spiky_gradient_factor(double r, const Support<D>& s) {
+  const double w = spiky_derivative<D>(r, s) / (r > 0.0 ? r : 1.0);
+  return r >= s.h || r <= 0.0 ? 0.0 : w;
 }
 
 /// spiky gradient W'(r) d/r (zero at r = 0, where the direction is undefined).
@@ -166,8 +176,8 @@ inline double viscosity(double r, double h) {
 /// viscosity Laplacian: 45/(π h⁶)(h−r) in 3-D, 40/(π h⁵)(h−r) in 2-D (non-negative).
 template <int D>
 inline double viscosity_laplacian(double r, const Support<D>& s) {
-  if (r >= s.h) return 0.0;
-  return s.viscosity_laplacian * (s.h - r);
+  const double w = s.viscosity_laplacian * (s.h - r);
+  return r >= s.h ? 0.0 : w;
 }
 template <int D>
 inline double viscosity_laplacian(double r, double h) {

@@ -18,12 +18,17 @@ namespace sc {
 /// rest then carries twice the hydrostatic pressure. The unit test
 /// water/pressure_force_reproduces_linear_gradient pins this. `mueller_half` = true selects
 /// Müller's halved form (documented switch, for comparison only). `si`: the support h_i.
+/// The factor −V_i V_j (P_i + P_j) (or Müller's half of it) of the averaged gradient in f_ij [thesis eq. 4].
+inline double pressure_pair_coefficient(double Vi, double Vj, double Pi, double Pj, bool mueller_half = false) {
+  const double pressure = mueller_half ? 0.5 * (Pi + Pj) : (Pi + Pj);
+  return -Vi * Vj * pressure;
+}
+
 template <int D>
 inline Vec<D> pressure_pair_force(double Vi, double Vj, double Pi, double Pj, const Vec<D>& d, double r,
                                   const kernel::Support<D>& si, double hj, bool mueller_half = false) {
   const Vec<D> grad = kernel::pair_average([&](const kernel::Support<D>& s) { return kernel::spiky_gradient<D>(d, r, s); }, si, hj);
-  const double pressure = mueller_half ? 0.5 * (Pi + Pj) : (Pi + Pj);
-  return (-Vi * Vj * pressure) * grad;
+  return pressure_pair_coefficient(Vi, Vj, Pi, Pj, mueller_half) * grad;
 }
 
 }  // namespace sc
