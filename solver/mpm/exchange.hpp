@@ -42,4 +42,13 @@ void exchange_momentum(double m_s, double m_w, double a, Vec<D>& v_s, Vec<D>& v_
   v_w = (a * p_s + (m_s + a) * p_w) / det;
 }
 
+/// The water velocity of a node whose sand a clamp holds at rest: exchange_momentum in the limit
+/// m_s → ∞ with v_s = 0, (m_w + a) v_w = m_w ṽ_w. The water's velocity falls by m_w/(m_w + a) per
+/// step, and under a steady force f (so ṽ_w = v_w + Δt f/m_w) it settles where the drag balances
+/// it, ξ v_w = f: Darcy's law through a fixed skeleton. [Tampubolon 2017: eq. 22, immovable sand]
+template <int D>
+void exchange_with_clamped_sand(double m_w, double a, Vec<D>& v_w) {
+  v_w *= m_w / (m_w + a);
+}
+
 }  // namespace sc::mpm

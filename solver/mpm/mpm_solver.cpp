@@ -31,6 +31,16 @@ MpmSolver<D>::MpmSolver(Params<D> params, Particles<D> particles) : params_(std:
   weights_.resize(ps_.size());
   tau_.assign(ps_.size(), Mat<D>::Zero());
   for (const std::size_t i : sand_) tau_[i] = hencky_kirchhoff<D>(ps_.Fe[i], params_.sand);
+  clamped_.resize(params_.grid.node_count());
+  for (std::size_t k = 0; k < clamped_.size(); ++k) clamped_[k] = clamped(params_.grid.position(params_.grid.axes(k)));
+}
+
+template <int D>
+bool MpmSolver<D>::clamped(const Vec<D>& x) const {
+  const double eps = 1e-9 * params_.grid.h;
+  for (const auto& [lo, hi] : params_.clamps)
+    if (((x.array() >= lo.array() - eps) && (x.array() <= hi.array() + eps)).all()) return true;
+  return false;
 }
 
 template <int D>
@@ -124,7 +134,8 @@ void MpmSolver<D>::gather() {
   }
 }
 
-/// Gravity, the exchange where both phases have mass, the start-up damping, then each phase's walls.
+/// Gravity, the exchange where both phases have mass, the start-up damping, the clamps, then each
+/// phase's walls.
 template <int D>
 void MpmSolver<D>::update_grid(double dt) {
   {
@@ -146,6 +157,7 @@ void MpmSolver<D>::update_grid(double dt) {
     const std::array<long, D> node = params_.grid.axes(static_cast<std::size_t>(k));
     nodes_.v_s[k] *= damping;
     nodes_.v_w[k] *= damping;
+    if (clamped_[k]) nodes_.v_s[k].setZero();
     apply_walls(node, true, nodes_.v_s[k]);
     apply_walls(node, false, nodes_.v_w[k]);
   }
@@ -158,8 +170,11 @@ void MpmSolver<D>::exchange(double dt) {
 #pragma omp parallel for schedule(static) if (n >= parallel_min)
   for (long k = 0; k < n; ++k) {
     if (nodes_.m_s[k] <= 0.0 || nodes_.m_w[k] <= 0.0) continue;
-    const double xi = node_drag(params_.drag, nodes_.V_s[k], nodes_.saturation[k]);
-    exchange_momentum<D>(nodes_.m_s[k], nodes_.m_w[k], dt * xi, nodes_.v_s[k], nodes_.v_w[k]);
+    const double a = dt * node_drag(params_.drag, nodes_.V_s[k], nodes_.saturation[k]);
+    if (clamped_[k])
+      exchange_with_clamped_sand<D>(nodes_.m_w[k], a, nodes_.v_w[k]);
+    else
+      exchange_momentum<D>(nodes_.m_s[k], nodes_.m_w[k], a, nodes_.v_s[k], nodes_.v_w[k]);
   }
 }
 
