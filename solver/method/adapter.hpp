@@ -88,13 +88,13 @@ inline json own_parameters(const CaseSpec& spec, const std::string& method, cons
 
 /// Throws InputError (the case file, the JSON path, the rule) for a scene that none of FLIP, DEM and
 /// MPM runs: no tank (`tank_role`: what its sides are to the method), meshes, a porous section
-/// (`porous_rule`: why the method reads none), or split and merge.
+/// (`porous_rule`: why the method reads none; empty for a method that reads it), or split and merge.
 inline void check_tank_scene(const CaseSpec& spec, const std::string& method, const std::string& tank_role,
                              const std::string& porous_rule) {
   const std::string name = "method \"" + method + "\" ";
   if (!spec.tank) throw InputError(spec.file, "/tank", name + "needs a tank (" + tank_role + ")");
   if (!spec.meshes.empty()) throw InputError(spec.file, "/meshes", name + "fills blocks only, not meshes");
-  if (spec.porous) throw InputError(spec.file, "/porous", name + porous_rule);
+  if (spec.porous && !porous_rule.empty()) throw InputError(spec.file, "/porous", name + porous_rule);
   if (spec.adaptive) throw InputError(spec.file, "/adaptive", name + "has no split and merge");
 }
 

@@ -1,6 +1,7 @@
-// The momentum exchange between the sand and the water grids of two-grid MPM (Tampubolon et al.
-// 2017): where both phases have mass on a node, a drag ξ (v_w − v_s) acts on the sand and its
-// negative on the water, taken implicitly so that any ξ Δt is stable (docs/equations.md §9).
+// What the sand and the water grids of two-grid MPM trade: the momentum exchange of Tampubolon et
+// al. 2017, where both phases have mass on a node a drag ξ (v_w − v_s) acts on the sand and its
+// negative on the water, taken implicitly so that any ξ Δt is stable; and the pore pressure, shared
+// between the phases by their volume fractions (docs/equations.md §9).
 #pragma once
 #include <algorithm>
 
@@ -23,10 +24,17 @@ inline double node_saturation(double sand_volume, double water_volume, double po
   return sand_volume > 0.0 ? std::min(1.0, water_volume / (porosity * sand_volume)) : 0.0;
 }
 
-/// The drag coefficient of a node [kg/s]: ξ_i = c_E s_i V_i^s, the mixture volume the node's sand
-/// represents, in the share of its pores the water fills. [Tampubolon 2017: nodal drag ξ]
-inline double node_drag(double drag_per_volume, double sand_volume, double saturation) {
-  return drag_per_volume * saturation * sand_volume;
+/// The drag coefficient of a node [kg/s]: ξ_i = c_E s_i V_i^s n_i/n, for a node of porosity n_i
+/// (node_porosity) in sand of porosity n. Darcy's law ties the drag to the flux: per unit volume of
+/// saturated bed it is (n ρ_w g/K) q = (c_E/n) q, with q = n_i (v_w − v_s) the flux through the node.
+/// Inside a bed n_i = n, and ξ_i = c_E s_i V_i^s: the mixture volume the node's sand represents, in
+/// the share of its pores the water fills. On a node across a bed's surface the one water velocity is
+/// the mass average of the pore water and the open water, n/n_i of the pore velocity; n_i/n puts the
+/// drag back on the pore water's velocity, so that the bed resists over its whole length and not
+/// over that less a smoothed layer at each surface. [Tampubolon 2017: nodal drag ξ]
+inline double node_drag(double drag_per_volume, double sand_volume, double saturation, double node_porosity,
+                        double porosity) {
+  return drag_per_volume * saturation * sand_volume * node_porosity / porosity;
 }
 
 /// Sand and water velocities of one node after the implicit exchange. With a = Δt ξ, the two rows
@@ -40,6 +48,26 @@ void exchange_momentum(double m_s, double m_w, double a, Vec<D>& v_s, Vec<D>& v_
   const double det = (m_s + a) * (m_w + a) - a * a;
   v_s = ((m_w + a) * p_s + a * p_w) / det;
   v_w = (a * p_s + (m_s + a) * p_w) / det;
+}
+
+/// The water velocity of a node whose sand a clamp holds at rest: exchange_momentum in the limit
+/// m_s → ∞ with v_s = 0, (m_w + a) v_w = m_w ṽ_w. The water's velocity falls by m_w/(m_w + a) per
+/// step, and under a steady force f (so ṽ_w = v_w + Δt f/m_w) it settles where the drag balances
+/// it, ξ v_w = f: Darcy's law through a fixed skeleton. [Tampubolon 2017: eq. 22, immovable sand]
+template <int D>
+void exchange_with_clamped_sand(double m_w, double a, Vec<D>& v_w) {
+  v_w *= m_w / (m_w + a);
+}
+
+/// The porosity of a node, n_i = 1 − (1 − n) min(1, V_i^s / V_i^m): V_i^s = Σ_p w_ip V_p⁰ of the sand
+/// and V_i^m = Σ_p w_ip J_p V_p⁰ / n_p of the water, the mixture volume each phase's particles fill
+/// near the node. n inside a saturated bed, 1 in open water, in between across a bed's surface (and
+/// the same ratio on a wall, where both sums lose the same share); 1 without water. The pore
+/// pressure's force on the node's mixture, −∇p, is shared by these fractions: n_i to the water and
+/// 1 − n_i to the grains, so sand under still water carries its buoyant weight and a seepage drags
+/// the grains by the drag alone. [Zienkiewicz & Shiomi 1984: u-U equations, volume fractions]
+inline double node_porosity(double sand_volume, double water_mixture_volume, double porosity) {
+  return water_mixture_volume > 0.0 ? 1.0 - (1.0 - porosity) * std::min(1.0, sand_volume / water_mixture_volume) : 1.0;
 }
 
 }  // namespace sc::mpm

@@ -1,5 +1,6 @@
 #include "mpm/mpm_method.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -21,16 +22,18 @@ bool has_fill(const CaseSpec& spec, BlockFill fill) {
   return false;
 }
 
-/// The particles of one block on the lattice of spacing dx, each ρ dx^D of the block's phase.
+/// The particles of one block on the lattice of spacing dx, each ρ dx^D of phase `phase`; water in
+/// pores of porosity `porosity` (1: open water) takes the share `fill` of each site's volume.
 template <int D>
-void seed_block(const BlockSpec& block, double dx, double rho, mpm::Particles<D>& ps) {
+void seed_block(const BlockSpec& block, double dx, double rho, Phase phase, mpm::Particles<D>& ps,
+                double porosity = 1.0, double fill = 1.0) {
   std::array<long, D> n{};
   long count = 1;
   for (int d = 0; d < D; ++d) {
     n[d] = std::lround((block.max[d] - block.min[d]) / dx);
     count *= n[d];
   }
-  const double volume = std::pow(dx, D);
+  const double volume = fill * std::pow(dx, D);
   for (long k = 0; k < count; ++k) {
     Vec<D> x;
     long rest = k;
@@ -38,7 +41,7 @@ void seed_block(const BlockSpec& block, double dx, double rho, mpm::Particles<D>
       x[d] = block.min[d] + (static_cast<double>(rest % n[d]) + 0.5) * dx;
       rest /= n[d];
     }
-    ps.add(x, rho * volume, volume, block.phase());
+    ps.add(x, rho * volume, volume, phase, porosity);
   }
 }
 
@@ -55,16 +58,22 @@ MpmCaseParams read_mpm_params(const CaseSpec& spec) {
   p.poisson_ratio = o.in_range("poisson_ratio", 0.0, 0.5, false, p.poisson_ratio);
   if (p.poisson_ratio >= 0.5) o.fail("poisson_ratio", "must be in [0, 0.5)");
   p.volume_correction = o.boolean("volume_correction", p.volume_correction);
+  if (spec.porous) {
+    for (const char* key : {"porosity", "hydraulic_conductivity"})
+      if (o.has(key)) o.fail(key, "is given by the case's \"porous\" section (porosity, permeability k: K = k rho g / mu)");
+    if (spec.porous->capillary_constant != 0.0)
+      throw InputError(spec.file, "/porous/capillary_constant", "method \"mpm\" has no capillary suction: must be 0");
+    p.porosity = spec.porous->porosity;
+    p.hydraulic_conductivity = spec.porous->permeability * spec.porous->fluid_density * std::abs(spec.gravity[spec.dimension - 1]) /
+                               spec.porous->fluid_viscosity;
+    p.initial_saturation = spec.porous->initial_saturation;
+  }
   p.porosity = o.in_range("porosity", 0.0, 1.0, true, p.porosity);
   p.hydraulic_conductivity = o.positive("hydraulic_conductivity", p.hydraulic_conductivity);
   o.finish();
-  check_tank_scene(spec, "mpm", "its sides are the grid's walls", "models the pores by its two grids, not by a porous section");
+  check_tank_scene(spec, "mpm", "its sides are the grid's walls", "");
   if (spec.blocks.empty()) throw InputError(spec.file, "/blocks", "method \"mpm\" needs at least one block");
-  for (std::size_t b = 0; b < spec.blocks.size(); ++b)
-    if (spec.blocks[b].fill == BlockFill::PorousBed)
-      throw InputError(spec.file, "/blocks/" + std::to_string(b) + "/phase",
-                       "method \"mpm\" runs water and sand blocks only, not a porous bed");
-  if (has_fill(spec, BlockFill::Sand) && !(spec.sand.friction_angle_deg > 0.0))
+  if ((has_fill(spec, BlockFill::Sand) || has_fill(spec, BlockFill::PorousBed)) && !(spec.sand.friction_angle_deg > 0.0))
     throw InputError(spec.file, "/sand/friction_angle", "method \"mpm\" needs a positive friction angle (its cone's apex sits at c cot phi)");
   return p;
 }
@@ -94,8 +103,12 @@ mpm::Params<D> mpm_params(const CaseSpec& spec, const MpmCaseParams& own, double
   p.water_density = spec.water.rest_density;
   p.eos = spec.eos;
   p.porosity = own.porosity;
+  for (const BlockSpec& b : spec.blocks)
+    if (b.fill == BlockFill::PorousBed)
+      p.clamps.push_back({Vec<D>(to_vec<D>(b.min).array() - 1.5 * p.grid.h), Vec<D>(to_vec<D>(b.max).array() + 1.5 * p.grid.h)});
   const double g = p.gravity.norm();
-  if (has_fill(spec, BlockFill::Sand) && has_fill(spec, BlockFill::Water)) {
+  const bool grains = has_fill(spec, BlockFill::Sand) || has_fill(spec, BlockFill::PorousBed);
+  if (grains && (has_fill(spec, BlockFill::Water) || own.initial_saturation > 0.0)) {
     if (g == 0.0)
       throw InputError(spec.file, "/methods/mpm/hydraulic_conductivity",
                        "the drag c_E = n^2 rho_w g / K of sand and water needs gravity");
@@ -108,8 +121,12 @@ mpm::Params<D> mpm_params(const CaseSpec& spec, const MpmCaseParams& own, double
 }
 
 template <int D>
-MpmMethod<D>::MpmMethod(mpm::MpmSolver<D> solver, double dt, double support)
-    : ParticleAdapter<D, mpm::Particles<D>>(solver.particles()), solver_(std::move(solver)), dt_(dt), support_(support) {}
+MpmMethod<D>::MpmMethod(mpm::MpmSolver<D> solver, double dt, double support, std::vector<std::uint8_t> bed)
+    : ParticleAdapter<D, mpm::Particles<D>>(solver.particles()),
+      solver_(std::move(solver)),
+      dt_(dt),
+      support_(support),
+      bed_(std::move(bed)) {}
 
 template <int D>
 void MpmMethod<D>::check_state() const {
@@ -137,20 +154,33 @@ ParticleView<D> MpmMethod<D>::view_of(const mpm::Particles<D>& ps) const {
   pressure_.resize(ps.size());
   density_.resize(ps.size());
   support_field_.assign(ps.size(), support_);
+  phase_ = ps.phase;
+  porosity_.assign(ps.size(), 0.0);
+  pore_volume_.assign(ps.size(), 0.0);
+  pore_pressure_.assign(ps.size(), 0.0);
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const Mat<D> tau = ps.is_sand(i) ? mpm::hencky_kirchhoff<D>(ps.Fe[i], params.sand)
                                      : mpm::water_kirchhoff<D>(ps.J[i], params.water_density, params.eos);
     pressure_[i] = -tau.trace() / (D * ps.J[i]);
     density_[i] = ps.m[i] / (ps.J[i] * ps.V0[i]);
+    if (!bed_[i]) continue;
+    phase_[i] = static_cast<std::uint8_t>(Phase::Boundary);
+    porosity_[i] = params.porosity;
+    pore_volume_[i] = params.porosity * ps.J[i] * ps.V0[i];
+    pore_pressure_[i] = ps.pressure[i];
   }
   pressure_ = mpm::through_grid<D>(params.grid, ps, pressure_);
   ParticleView<D> view = this->motion(ps);
   view.m = ps.m;
-  view.phase = ps.phase;
+  view.phase = phase_;
   view.pressure = pressure_;
   view.density = density_;
   view.support = support_field_;
   view.saturation = ps.saturation;
+  if (std::find(bed_.begin(), bed_.end(), 1) == bed_.end()) return view;
+  view.porosity = porosity_;
+  view.pore_volume = pore_volume_;
+  view.pore_water_pressure = pore_pressure_;
   return view;
 }
 
@@ -160,9 +190,20 @@ std::unique_ptr<Method<D>> make_mpm_method(const CaseSpec& spec, double dx) {
   const mpm::Params<D> params = mpm_params<D>(spec, own, dx);
   check_blocks_inside<D>(spec, "mpm", "the grid's walls", params.wall_lo, params.wall_hi);
   mpm::Particles<D> ps;
-  for (const BlockSpec& block : spec.blocks)
-    seed_block<D>(block, dx, block.fill == BlockFill::Sand ? spec.sand.rest_density : spec.water.rest_density, ps);
-  return std::make_unique<MpmMethod<D>>(mpm::MpmSolver<D>(params, std::move(ps)), spec.dt_max, spec.support_ratio * dx);
+  std::vector<std::uint8_t> bed;
+  for (const BlockSpec& block : spec.blocks) {
+    const bool porous = block.fill == BlockFill::PorousBed;
+    if (block.fill == BlockFill::Water)
+      seed_block<D>(block, dx, spec.water.rest_density, Phase::Water, ps);
+    else
+      seed_block<D>(block, dx, spec.sand.rest_density, Phase::Sand, ps);
+    bed.resize(ps.size(), porous ? 1 : 0);
+    if (!porous || own.initial_saturation <= 0.0) continue;
+    seed_block<D>(block, dx, spec.water.rest_density, Phase::Water, ps, own.porosity, own.porosity * own.initial_saturation);
+    bed.resize(ps.size(), 0);
+  }
+  return std::make_unique<MpmMethod<D>>(mpm::MpmSolver<D>(params, std::move(ps)), spec.dt_max, spec.support_ratio * dx,
+                                        std::move(bed));
 }
 
 template mpm::Params<2> mpm_params<2>(const CaseSpec&, const MpmCaseParams&, double);

@@ -13,7 +13,8 @@
 
 namespace sc {
 
-/// MPM's own parameters of a case, "methods"/"mpm" (every key optional):
+/// MPM's own parameters of a case, "methods"/"mpm" (every key optional; with a "porous" section the
+/// porosity and the conductivity are the section's, n = porosity and K = k ρ g / μ, and not keys here):
 ///   cell_size               grid cell width in particle spacings (2: 2^D particles per cell)
 ///   cfl                     substeps move the fastest wave at most cfl cell widths, in (0, 1]
 ///   youngs_modulus          E of the sand's Hencky elasticity [Pa]
@@ -29,23 +30,27 @@ struct MpmCaseParams {
   bool volume_correction = true;
   double porosity = 0.4;
   double hydraulic_conductivity = 1e-3;
+  double initial_saturation = 0.0;  ///< of a porous bed's pores ("porous"/"initial_saturation")
 };
 
 /// Reads and checks the case's "methods"/"mpm" object and that the case is one MPM can run (a tank,
-/// blocks of water or sand only, no meshes, porous section or adaptivity, a positive friction angle
-/// for sand). Throws InputError (the case file, the JSON path, the rule). Allocates nothing.
+/// blocks of water, sand or porous bed, no meshes or adaptivity, no capillarity in a porous section, a
+/// positive friction angle for sand). Throws InputError (the case file, the JSON path, the rule).
+/// Allocates nothing.
 MpmCaseParams read_mpm_params(const CaseSpec& spec);
 
 /// The solver parameters of the case at particle spacing dx: the grid covers the tank, extended to
-/// the domain on open sides (where a smooth lid at the grid's edge keeps the material in).
+/// the domain on open sides (where a smooth lid at the grid's edge keeps the material in); each porous
+/// bed is held by a clamp over the nodes its particles reach (its box grown by 1.5 cells).
 template <int D>
 mpm::Params<D> mpm_params(const CaseSpec& spec, const MpmCaseParams& own, double dx);
 
 template <int D>
 class MpmMethod final : public ParticleAdapter<D, mpm::Particles<D>> {
  public:
-  /// The solver, the case's step (divided into stable substeps) and the support radius the view reports.
-  MpmMethod(mpm::MpmSolver<D> solver, double dt, double support);
+  /// The solver, the case's step (divided into stable substeps), the support radius the view reports
+  /// and which particles are a porous bed's sand (1), shown as SPH shows its bed.
+  MpmMethod(mpm::MpmSolver<D> solver, double dt, double support, std::vector<std::uint8_t> bed);
 
   std::string_view name() const override { return "mpm"; }
   /// Keeps the particles as the last good state, then advances the case's step in substeps.
@@ -54,7 +59,9 @@ class MpmMethod final : public ParticleAdapter<D, mpm::Particles<D>> {
   long steps() const override { return steps_; }
   /// x, v, m, phase; pressure −tr τ / (D J) (water: the equation of state at J), seen through the
   /// grid (mpm/grid_field.hpp); density
-  /// m / (J V0); the case's support radius; the sand's saturation (0 for water).
+  /// m / (J V0); the case's support radius; the sand's saturation (0 for water). A porous bed's sand
+  /// as a fixed porous phase (Phase::Boundary) with its porosity n, pore volume n J V0 and pore-water
+  /// pressure; its pore water is free water particles, so no water is held.
   ParticleView<D> particles() const override { return view_of(solver_.particles()); }
   /// The solver's stage times; the transfer's count is its substeps.
   std::vector<StageTime> stage_times() const override {
@@ -74,12 +81,16 @@ class MpmMethod final : public ParticleAdapter<D, mpm::Particles<D>> {
 
   mpm::MpmSolver<D> solver_;
   double dt_, support_;
+  std::vector<std::uint8_t> bed_;
   long steps_ = 0, substeps_ = 0;
-  mutable std::vector<double> pressure_, density_, support_field_;  // fields of the last particles() call
+  // fields of the last particles() call
+  mutable std::vector<double> pressure_, density_, support_field_, porosity_, pore_volume_, pore_pressure_;
+  mutable std::vector<std::uint8_t> phase_;
 };
 
 /// MPM at t = 0: the case's blocks on the lattice of spacing dx, in file order, at rest; each
-/// particle carries ρ dx^D of its phase.
+/// particle carries ρ dx^D of its phase. A porous bed is sand (`sand.rest_density`) with water at the
+/// same sites filling the share S0 of its pores: ρ_w n S0 dx^D, volume n S0 dx^D, porosity n.
 template <int D>
 std::unique_ptr<Method<D>> make_mpm_method(const CaseSpec& spec, double dx);
 

@@ -4,6 +4,7 @@
 // before the velocities go back to the particles (docs/equations.md §9).
 #pragma once
 #include <array>
+#include <cstdint>
 #include <string_view>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct Params {
   Vec<D> wall_lo = Vec<D>::Zero(), wall_hi = Vec<D>::Zero();  ///< planes the material stays within
   std::array<bool, 2 * D> rough{};  ///< sides (2d: at wall_lo[d], 2d + 1: at wall_hi[d]) where sand feels Coulomb friction
   double wall_friction = 0.0;       ///< Coulomb coefficient of the rough sides
+  /// Boxes [lo, hi] whose grid nodes clamp the sand: its velocity there is zero, in tension as in
+  /// compression, and the water drags on it as on an immovable skeleton (a bar's held end, a fixed bed).
+  std::vector<std::array<Vec<D>, 2>> clamps;
   Vec<D> gravity = Vec<D>::Zero();
   SandModel sand;
   double cohesion = 0.0;            ///< dry cohesion c0 [Pa]
@@ -40,10 +44,11 @@ enum class MpmStage { Transfer, Stress, Grid, Exchange, Count };
 inline constexpr std::array<std::string_view, static_cast<std::size_t>(MpmStage::Count)> mpm_stage_names = {
     "transfer", "stress", "grid", "exchange"};
 
-/// The two grids' nodal state: mass, volume Σ w V0 and velocity of each phase, and the saturation.
+/// The two grids' nodal state: mass, volume Σ w V0 and velocity of each phase, the saturation, and
+/// where both phases are present the porosity and the water's pressure p_i = Σ w m p / Σ w m.
 template <int D>
 struct Nodes {
-  std::vector<double> m_s, m_w, V_s, V_w, saturation;
+  std::vector<double> m_s, m_w, V_s, V_w, saturation, porosity, pressure;
   std::vector<Vec<D>> v_s, v_w;
   void resize(std::size_t n);
 };
@@ -74,17 +79,21 @@ class MpmSolver {
 
  private:
   void affine_momenta(double dt);
-  void gather();
+  void gather(double dt);
   void update_grid(double dt);
   void exchange(double dt);
   void scatter(double dt);
   void plasticity(std::size_t i);
   void apply_walls(const std::array<long, D>& node, bool sand, Vec<D>& v) const;
+  bool clamped(const Vec<D>& x) const;
 
   Params<D> params_;
   Particles<D> ps_;
   Nodes<D> nodes_;
   std::vector<std::size_t> sand_, water_;  // particle indices of each phase, in order
+  std::vector<std::uint8_t> clamped_;       // per node: 1 where a clamp holds the sand
+  bool mixture_ = false;                    // both phases present: the pore pressure couples them
+  bool transferred_ = false;                // a grid-to-particle transfer has set the water's porosity
   Bins sand_bins_, water_bins_;
   std::vector<Mat<D>> affine_;              // m C − Δt V0 D⁻¹ τ of each particle
   std::vector<AxisWeights<D>> weights_;     // each particle's 1-D weights at its position of this substep

@@ -11,10 +11,12 @@
 // at the end is compared with the linear profile from ρ g h_p at the top to 0 at the bottom (relative RMS over ρ g (L + h_p)).
 // Metrics: flux_rel_error, pressure_profile_error, water_balance_rel_error, saturation_violation;
 // informational: flux [m/s], ponding_depth [m] (window mean).
-// The pond depth counts water in full SPH water particles (the SPH probe): the observer needs SPH.
+// Pond depth and outflow count water in full water particles (full_water_mass: SPH's probe, or the
+// lattice mass of MPM, whose held bed reports its sand as a fixed porous phase with the pore pressure).
+#include <cctype>
+
 #include "observer.hpp"
 #include "porous_probe.hpp"
-#include "simulator/sph_probe.hpp"
 
 namespace sc {
 
@@ -26,7 +28,6 @@ class DarcyColumnObserver : public Observer<D> {
   explicit DarcyColumnObserver(const ObserverContext& ctx) : dx_(ctx.spacing) {
     JsonObject o = validation_block(ctx);
     if (!ctx.spec.porous || !ctx.spec.tank) o.fail("observer", "darcy_column needs a \"porous\" section and a tank");
-    require_sph(ctx.spec, "the darcy_column observer (its pond depth counts full SPH water particles)");
     bottom_ = o.number("column_bottom");
     top_ = o.number("column_top");
     fit_start_ = o.non_negative("fit_start", 0.0);
@@ -46,12 +47,12 @@ class DarcyColumnObserver : public Observer<D> {
   void sample(const Method<D>& run) override {
     balance_.sample(run);
     const ParticleView<D> ps = run.particles();
-    const double water_mass = require_sph(run, "darcy_column").full_water_mass();
+    const double water_mass = full_water_mass(run, rho_, dx_);
     double out = 0.0, pond = 0.0;
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] < bottom_) out += ps.m[i];
       if (ps.phase_of(i) == Phase::Water && ps.x[i][D - 1] > top_) pond += ps.m[i];
-      if (ps.porosity[i] > 0.0) out += ps.leaving_water[i];
+      if (!ps.leaving_water.empty() && ps.porosity[i] > 0.0) out += ps.leaving_water[i];
     }
     time_.push_back(run.time());
     outflow_.push_back(lattice_water_volume<D>(out, water_mass, dx_) / width_);
@@ -77,12 +78,14 @@ class DarcyColumnObserver : public Observer<D> {
     std::vector<double> ref(time_.size(), outflow_.empty() ? 0.0 : outflow_.front());
     for (std::size_t k = 1; k < time_.size(); ++k)  // ∫ K (L + h_p(t))/L dt with the measured pond
       ref[k] = ref[k - 1] + K_ * (L + 0.5 * (pond_[k] + pond_[k - 1])) / L * (time_[k] - time_[k - 1]);
+    std::string who(run.name());  // the method, as the plots name it
+    for (char& c : who) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
     r.series.push_back({"outflow_sim", "time [s]", "outflow per unit width [m]", time_, outflow_});
     r.series.push_back({"outflow_exact", "time [s]", "outflow per unit width [m]", time_, ref});
     r.plots.push_back({"outflow.png", "Permeameter outflow (slope = Darcy flux)", "time [s]", "outflow [m]",
-                       {{"outflow_sim", "SPH porous flow", "line"}, {"outflow_exact", "Darcy: integral of K (L + hp(t))/L", "line"}}});
+                       {{"outflow_sim", who + " porous flow", "line"}, {"outflow_exact", "Darcy: integral of K (L + hp(t))/L", "line"}}});
     r.plots.push_back({"pore_pressure.png", "Pore-water pressure P^p - P^c", "pressure [Pa]", "height [m]",
-                       {{"pressure_sim", "SPH (row mean, central band)", "markers"}, {"pressure_exact", "Darcy", "line"}}});
+                       {{"pressure_sim", who + " (row mean, central band)", "markers"}, {"pressure_exact", "Darcy", "line"}}});
     return r;
   }
 

@@ -8,12 +8,14 @@
 #include "method/method.hpp"
 #include "observers/line_fit.hpp"
 #include "porous/porous_flow.hpp"
+#include "simulator/sph_probe.hpp"
 
 namespace sc {
 
 /// Free water plus absorbed water, against its value at the first sample; and the saturation
 /// m_p/(ρ^f φ V) of every porous particle *before* eq 21's clamp, so that a limiter failure shows.
-/// Needs the view's porosity, pore volume φ V and held water.
+/// Needs the view's porosity and pore volume φ V, and its held water; a method whose pore water is
+/// free water (MPM: no held water) is bounded by the saturation its view reports.
 template <int D>
 class WaterBalanceProbe {
  public:
@@ -28,7 +30,7 @@ class WaterBalanceProbe {
     error_ = std::max(error_, std::abs(total - initial_) / initial_);
     for (std::size_t i = 0; i < ps.size(); ++i) {
       if (!is_porous_phase(ps.phase_of(i), ps.porosity[i])) continue;
-      const double S = ps.held_water[i] / (fluid_density_ * ps.pore_volume[i]);
+      const double S = ps.held_water.empty() ? ps.saturation[i] : ps.held_water[i] / (fluid_density_ * ps.pore_volume[i]);
       s_min_ = std::min(s_min_, S);
       s_max_ = std::max(s_max_, S);
     }
@@ -49,6 +51,13 @@ class WaterBalanceProbe {
 template <int D>
 double lattice_water_volume(double mass, double full_water_mass, double dx) {
   return mass / full_water_mass * std::pow(dx, D);
+}
+
+/// The mass of a full water particle of `run` at spacing dx: SPH's (SphProbe::full_water_mass), or
+/// ρ dx^D for a method that seeds every lattice site of water with that mass (MPM).
+template <int D>
+double full_water_mass(const Method<D>& run, double rho, double dx) {
+  return run.name() == "sph" ? require_sph(run, "full_water_mass").full_water_mass() : rho * std::pow(dx, D);
 }
 
 /// Porous (fixed-skeleton) particles whose x lies in [lo, hi]: the central band of a column.
