@@ -63,17 +63,18 @@ json count_phases(const ParticleView<D>& view) {
 }
 
 /// Restarts the kernel's count of this process' peak resident set (Linux: /proc/self/clear_refs),
-/// so that peak_resident_bytes() reads the peak from here on; false where that is not possible.
+/// so that VmHWM reads the peak from here on; false where that is not possible.
 bool restart_peak_resident() {
   std::ofstream f("/proc/self/clear_refs");
   return static_cast<bool>(f << "5");
 }
 
-/// The peak resident set of this process [bytes] (VmHWM of /proc/self/status), 0 where unknown.
-double peak_resident_bytes() {
+/// A size of /proc/self/status [bytes]: "VmHWM" (peak resident set) or "VmRSS" (resident set), 0
+/// where unknown.
+double status_bytes(const std::string& key) {
   std::ifstream f("/proc/self/status");
   for (std::string line; std::getline(f, line);)
-    if (line.rfind("VmHWM:", 0) == 0) return 1024.0 * std::stod(line.substr(6));  // in kB
+    if (line.rfind(key + ":", 0) == 0) return 1024.0 * std::stod(line.substr(key.size() + 1));  // in kB
   return 0.0;
 }
 
@@ -81,6 +82,7 @@ double peak_resident_bytes() {
 template <int D>
 json bench_scene(const CaseSpec& spec, double dx, long steps) {
   const bool peak_known = restart_peak_resident();
+  const double resident_before = status_bytes("VmRSS");  // code, libraries, what earlier scenes left
   const std::unique_ptr<Method<D>> method = make_method<D>(spec, dx);
   Method<D>& sim = *method;
   json entry{{"scene", spec.name}, {"method", spec.method}, {"spacing", dx}, {"particles", count_phases(sim.particles())}};
@@ -117,9 +119,11 @@ json bench_scene(const CaseSpec& spec, double dx, long steps) {
   entry["checksum"] = sim.checksum();
   entry["final_particles"] = count_phases(sim.particles());
   if (peak_known) {
-    const double peak = peak_resident_bytes();
+    const double peak = status_bytes("VmHWM"), particles = entry["particles"]["total"].get<double>();
     entry["peak_resident_bytes"] = peak;
-    entry["peak_resident_bytes_per_particle"] = peak / entry["particles"]["total"].get<double>();
+    entry["peak_resident_bytes_per_particle"] = peak / particles;
+    entry["resident_before_bytes"] = resident_before;
+    entry["scene_peak_bytes_per_particle"] = (peak - resident_before) / particles;
   }
   return entry;
 }
@@ -185,8 +189,9 @@ void print_table(const json& entries) {
                   e["paper"]["seconds_per_frame"].get<double>(), e["speedup_vs_paper"].get<double>(), counted.c_str());
     }
     if (e.contains("peak_resident_bytes"))
-      std::printf("%-24s peak resident set %.0f MB: %.0f bytes per particle\n", "", e["peak_resident_bytes"].get<double>() / 1e6,
-                  e["peak_resident_bytes_per_particle"].get<double>());
+      std::printf("%-24s peak resident set %.0f MB: %.0f bytes per particle, %.0f above the %.0f MB held before the scene\n", "",
+                  e["peak_resident_bytes"].get<double>() / 1e6, e["peak_resident_bytes_per_particle"].get<double>(),
+                  e["scene_peak_bytes_per_particle"].get<double>(), e["resident_before_bytes"].get<double>() / 1e6);
     if (e.contains("adaptive_speedup"))
       std::printf("%-24s uniform %.1f ms/step (mean) vs adaptive %.1f: %.2fx faster; %.2fx fewer moving particles at the end\n", "",
                   e["uniform"]["ms_per_step"]["mean"].get<double>(), t["mean"].get<double>(), e["adaptive_speedup"].get<double>(),
