@@ -8,6 +8,7 @@
 #include "core/checksum.hpp"
 #include "mpm/exchange.hpp"
 #include "mpm/mpm_solver.hpp"
+#include "reference/analytic/terzaghi.hpp"
 
 using namespace sc;
 using namespace sc::mpm;
@@ -48,6 +49,19 @@ void fill(Particles<D>& ps, const Vec<D>& lo, const Vec<D>& hi, double dx, doubl
   }
 }
 
+/// Water in the pores of sand on the lattice of spacing dx over [lo, hi]: a particle on each site,
+/// ρ_w n dx^D, volume n dx^D, in pores of porosity n.
+template <int D>
+void fill_pores(Particles<D>& ps, const Vec<D>& lo, const Vec<D>& hi, double dx, double n) {
+  const std::size_t first = ps.size();
+  fill<D>(ps, lo, hi, dx, 1000.0, Phase::Water);
+  for (std::size_t i = first; i < ps.size(); ++i) {
+    ps.m[i] *= n;
+    ps.V0[i] *= n;
+    ps.porosity[i] = n;
+  }
+}
+
 /// The relative error of the mean vertical stress of the bottom particle layer of an elastic sand
 /// column of height H (ρ = 1800 kg/m^3, ν = 0, a cohesion it never reaches) in a smooth box of
 /// footprint `width`, damped to rest under gravity on a grid of cell h (2 particles per cell
@@ -71,14 +85,9 @@ double column_stress_error(double width, double H, double h, bool saturated = fa
   const double n = p.porosity, weight = saturated ? 1800.0 - (1.0 - n) * 1000.0 : 1800.0;
   if (saturated) {
     p.wet_cohesion_loss = false;
+    p.cfl = 0.2;  // the pore water stiffens the moving skeleton, explicitly through its porosity
     p.drag = drag_per_volume(n, 1000.0, 9.81, 1e-3);
-    const std::size_t sand = ps.size();
-    fill<D>(ps, Vec<D>::Zero(), top, dx, 1000.0, Phase::Water);
-    for (std::size_t i = sand; i < ps.size(); ++i) {
-      ps.m[i] *= n;
-      ps.V0[i] *= n;
-      ps.porosity[i] = n;
-    }
+    fill_pores<D>(ps, Vec<D>::Zero(), top, dx, n);
   }
   MpmSolver<D> solver(p, ps);
   while (solver.time() < 0.6) solver.advance(1e-3);
@@ -123,7 +132,8 @@ BOOST_AUTO_TEST_CASE(the_exchange_on_one_node_keeps_momentum_and_decays_the_rela
 // v_w − v_s = q / n. On a node across a bed's surface (porosity n_i, half of it bed) the water
 // moves at q / n_i, and the drag is still that of the bed's share at the pore velocity, c_E φ q / n.
 // [Zienkiewicz & Shiomi 1984: volume fractions] The node's porosity is n in the bed, 1 in open
-// water, and 1 − (1 − n)/2 where the bed fills half of what the water fills.
+// water, 1 − (1 − n)/2 where the bed fills half of what the water fills, and 1 − (1 − n)/J in a
+// skeleton compressed to J.
 BOOST_AUTO_TEST_CASE(the_drag_coefficient_gives_darcys_flux_in_a_steady_seepage) {
   const double n = 0.4, rho = 1000.0, g = 9.81, K = 1e-3, i = 0.5;
   const double cE = drag_per_volume(n, rho, g, K);
@@ -135,11 +145,15 @@ BOOST_AUTO_TEST_CASE(the_drag_coefficient_gives_darcys_flux_in_a_steady_seepage)
   BOOST_TEST(node_saturation(2.0, 5.0, n) == 1.0);
   BOOST_TEST(node_saturation(0.0, 5.0, n) == 0.0);
   BOOST_TEST(node_drag(cE, 2.0, 0.5, n, n) == cE, boost::test_tools::tolerance(1e-15));
-  const double half = node_porosity(0.5, 1.0, n);
+  const double half = node_porosity(0.5, 0.5, 1.0, n);
   BOOST_TEST(half == 1.0 - 0.5 * (1.0 - n), boost::test_tools::tolerance(1e-15));
-  BOOST_TEST(node_porosity(1.0, 1.0, n) == n, boost::test_tools::tolerance(1e-15));
-  BOOST_TEST(node_porosity(0.0, 1.0, n) == 1.0);
-  BOOST_TEST(node_porosity(1.0, 0.0, n) == 1.0);
+  BOOST_TEST(node_porosity(1.0, 1.0, 1.0, n) == n, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(node_porosity(0.0, 0.0, 1.0, n) == 1.0);
+  BOOST_TEST(node_porosity(1.0, 1.0, 0.0, n) == 1.0);
+  // Incompressible grains: a skeleton compressed to 0.9 of its volume, saturated or half saturated,
+  // has the porosity 1 − (1 − n)/0.9 (its pores shrink by all the volume it lost).
+  BOOST_TEST(node_porosity(1.0, 0.9, 0.9, n) == 1.0 - (1.0 - n) / 0.9, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(node_porosity(1.0, 0.9, 0.45, n) == 1.0 - (1.0 - n) / 0.9, boost::test_tools::tolerance(1e-15));
   BOOST_TEST(node_drag(cE, 0.5, 1.0, half, n) * q / half == cE * 0.5 * q / n, boost::test_tools::tolerance(1e-12));
 }
 
@@ -257,12 +271,7 @@ BOOST_AUTO_TEST_CASE(a_still_pond_over_a_held_bed_keeps_the_hydrostatic_pore_pre
   Particles<2> ps;
   fill<2>(ps, Vec<2>::Zero(), Vec<2>(0.1, bed), dx, 1800.0, Phase::Sand);
   const std::size_t sand = ps.size();
-  fill<2>(ps, Vec<2>::Zero(), Vec<2>(0.1, bed), dx, 1000.0, Phase::Water);
-  for (std::size_t i = sand; i < ps.size(); ++i) {
-    ps.m[i] *= n;
-    ps.V0[i] *= n;
-    ps.porosity[i] = n;
-  }
+  fill_pores<2>(ps, Vec<2>::Zero(), Vec<2>(0.1, bed), dx, n);
   fill<2>(ps, Vec<2>(0.0, bed), Vec<2>(0.1, bed + pond), dx, 1000.0, Phase::Water);
   MpmSolver<2> solver(p, ps);
   while (solver.time() < 0.5) solver.advance(1e-3);
@@ -413,6 +422,76 @@ BOOST_AUTO_TEST_CASE(a_collapsing_dry_column_keeps_its_volume_with_the_correctio
   BOOST_TEST_MESSAGE("collapsed column volume ratio: " << on << " with the correction, " << off << " without");
   BOOST_TEST(std::abs(on - 1.0) <= 0.05);
   BOOST_TEST(on - 1.0 < off - 1.0);
+}
+
+/// The degree of consolidation of a saturated elastic column measured at the time factors `Tv`
+/// (ascending), from its settlement s (the mean sinking of the loaded top row) over the final one of
+/// linear theory, s_∞ = q H / E_oed. The column: H = 0.1 m of sand (ρ = 1800 kg/m^3, E = 1e5 Pa,
+/// ν = 0.3, a cohesion it never reaches), 0.02 m wide between smooth walls on a smooth floor (closed
+/// to the water: it drains at its top only), its pores full (n = 0.4, K = 1e-3 m/s), no gravity;
+/// a load q = 1e-3 E_oed on its top row of sand particles from t = 0, without damping. In plane
+/// strain with the walls holding it laterally E_oed = λ + 2μ, and c_v = K E_oed / (ρ_w g), g = 9.81
+/// m/s² the unit weight of K's definition. The water's bulk modulus ρ_w c² (c = 80 m/s) is about
+/// 120 n E_oed, so the load first goes to the pore water, the settlement it allows at once is under
+/// 1 % of s_∞, and the undrained mixture rings about the loaded state by that much.
+std::vector<double> consolidation_degrees(const std::vector<double>& Tv) {
+  const double H = 0.1, width = 0.02, h = 0.01, dx = h / 2.0, n = 0.4, K = 1e-3;
+  Params<2> p = box(width, 2.0 * H, h);
+  p.sand = SandModel::from(2, 1e5, 0.3, 30.0, true);
+  p.cohesion = 1e7;
+  p.wet_cohesion_loss = false;
+  p.porosity = n;
+  p.drag = drag_per_volume(n, 1000.0, 9.81, K);
+  p.eos.sound_speed = 80.0;
+  const double E_oed = p.sand.lambda + 2.0 * p.sand.mu, q = 1e-3 * E_oed, cv = K * E_oed / (1000.0 * 9.81);
+  Particles<2> ps;
+  fill<2>(ps, Vec<2>::Zero(), Vec<2>(width, H), dx, 1800.0, Phase::Sand);
+  std::vector<std::size_t> top;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.x[i][1] > H - dx) {
+      ps.load[i] = Vec<2>(0.0, -q * dx);
+      top.push_back(i);
+    }
+  fill_pores<2>(ps, Vec<2>::Zero(), Vec<2>(width, H), dx, n);
+  MpmSolver<2> solver(p, ps);
+  std::vector<double> U;
+  for (const double T : Tv) {
+    solver.advance(T * H * H / cv - solver.time());
+    double sink = 0.0, pore = 0.0;
+    for (const std::size_t i : top) sink += (ps.x[i][1] - solver.particles().x[i][1]) / static_cast<double>(top.size());
+    int count = 0;
+    for (std::size_t i = 0; i < solver.particles().size(); ++i)
+      if (solver.particles().is_sand(i)) pore += solver.particles().pressure[i], ++count;
+    U.push_back(sink / (q * H / E_oed));
+    BOOST_TEST_MESSAGE("consolidation at T_v " << T << ": U " << U.back() << " from the settlement, "
+                                               << 1.0 - pore / count / q << " from the pore pressure, analytic "
+                                               << analytic::terzaghi_consolidation_degree(T) << " ("
+                                               << solver.time() << " s)");
+  }
+  return U;
+}
+
+// [Terzaghi 1943: consolidation] The analytic series at its landmarks: U = 0.5 at T_v = 0.197 and
+// 0.9 at T_v = 0.848 (to the three digits of the tables), 1 − 8/π² e^{−π² T/4} once the first term
+// dominates, and nothing at T_v = 0.
+BOOST_AUTO_TEST_CASE(the_consolidation_series_passes_its_landmarks) {
+  BOOST_TEST(analytic::terzaghi_consolidation_degree(0.197) == 0.5, boost::test_tools::tolerance(1e-3));
+  BOOST_TEST(analytic::terzaghi_consolidation_degree(0.848) == 0.9, boost::test_tools::tolerance(1e-3));
+  const double late = 1.0 - 8.0 / (pi * pi) * std::exp(-pi * pi * 2.0 / 4.0);
+  BOOST_TEST(analytic::terzaghi_consolidation_degree(2.0) == late, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(analytic::terzaghi_consolidation_degree(0.0) == 0.0);
+}
+
+// [Terzaghi 1943: consolidation] [Zienkiewicz & Shiomi 1984: u-U equations] [Tampubolon 2017: drag
+// c_E] A saturated elastic column under a surface load, draining at its top (consolidation_degrees):
+// the degree of consolidation from its settlement is the analytic series' within 0.03 at T_v =
+// 0.197 (U = 0.5) and 0.848 (U = 0.9). The pore water carries the load at first because the
+// grains share the pore pressure's force (1 − n_i); it drains at the pace of the drag, c_v ∝ 1/c_E.
+BOOST_AUTO_TEST_CASE(a_loaded_saturated_column_consolidates_as_terzaghi_says) {
+  const std::vector<double> Tv = {0.197, 0.848};
+  const std::vector<double> U = consolidation_degrees(Tv);
+  for (std::size_t k = 0; k < Tv.size(); ++k)
+    BOOST_TEST(std::abs(U[k] - analytic::terzaghi_consolidation_degree(Tv[k])) <= 0.03);
 }
 
 // Per-node gathers and per-particle scatters: a sand bed with water over part of it (the exchange

@@ -59,15 +59,31 @@ void exchange_with_clamped_sand(double m_w, double a, Vec<D>& v_w) {
   v_w *= m_w / (m_w + a);
 }
 
-/// The porosity of a node, n_i = 1 − (1 − n) min(1, V_i^s / V_i^m): V_i^s = Σ_p w_ip V_p⁰ of the sand
-/// and V_i^m = Σ_p w_ip J_p V_p⁰ / n_p of the water, the mixture volume each phase's particles fill
-/// near the node. n inside a saturated bed, 1 in open water, in between across a bed's surface (and
-/// the same ratio on a wall, where both sums lose the same share); 1 without water. The pore
-/// pressure's force on the node's mixture, −∇p, is shared by these fractions: n_i to the water and
-/// 1 − n_i to the grains, so sand under still water carries its buoyant weight and a seepage drags
-/// the grains by the drag alone. [Zienkiewicz & Shiomi 1984: u-U equations, volume fractions]
-inline double node_porosity(double sand_volume, double water_mixture_volume, double porosity) {
-  return water_mixture_volume > 0.0 ? 1.0 - (1.0 - porosity) * std::min(1.0, sand_volume / water_mixture_volume) : 1.0;
+/// The porosity of a node, n_i = 1 − (1 − n) min(1, V_i^s / V_i^m) V_i^s / V_i^{sJ}: V_i^s = Σ_p w_ip V_p⁰
+/// and V_i^{sJ} = Σ_p w_ip J_p V_p⁰ of the sand (porosity n undeformed), V_i^m = Σ_p w_ip J_p V_p⁰ / n_p
+/// the mixture volume the water's particles fill. The grains are incompressible, so a skeleton at
+/// volume ratio J has the porosity 1 − (1 − n)/J (V^s/V^{sJ}: compressed, it has less pore space and
+/// squeezes its water, Terzaghi's consolidation); min(1, V^s/V^m) is the share of the node's mixture
+/// that is bed: 1 inside a bed, saturated or not, less across a bed's surface, where open water
+/// fills the rest (and the same on a wall, where the sums lose the same share). So n_i is the
+/// skeleton's porosity in a bed, 1 in open water and 1 without water. The pore pressure's force on
+/// the node's mixture, −∇p, is shared by these fractions: n_i to the water and 1 − n_i to the grains,
+/// so sand under still water carries its buoyant weight and a seepage drags the grains by the drag
+/// alone. [Zienkiewicz & Shiomi 1984: u-U equations, volume fractions]
+inline double node_porosity(double sand_volume, double sand_volume_now, double water_mixture_volume, double porosity) {
+  if (!(water_mixture_volume > 0.0) || !(sand_volume > 0.0)) return 1.0;
+  return 1.0 - (1.0 - porosity) * std::min(1.0, sand_volume / water_mixture_volume) * (sand_volume / sand_volume_now);
+}
+
+/// The pore water stiffens the grains: a skeleton compressed by ε shrinks its pores by (1 − n) ε
+/// (incompressible grains, node_porosity), so the pressure rises by K_w (1 − n) ε / n and pushes the
+/// grains back with their share 1 − n. Per unit mixture volume the stiffness of (sand, water)
+/// displacements is [[E_oed + K_w (1 − n)²/n, K_w (1 − n)], [K_w (1 − n), K_w n]] over the masses
+/// (ρ_s, n ρ_w), whose largest eigenvalue is below the trace, c_s² + c_w² (1 + ρ_w (1 − n)²/(n ρ_s))
+/// with K_w = ρ_w c_w². This returns the factor of c_w² there. [Zienkiewicz & Shiomi 1984: u-U
+/// equations, undrained waves]
+inline double mixture_wave_factor(double porosity, double water_density, double sand_density) {
+  return 1.0 + water_density * (1.0 - porosity) * (1.0 - porosity) / (porosity * sand_density);
 }
 
 }  // namespace sc::mpm

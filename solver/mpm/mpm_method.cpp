@@ -58,11 +58,13 @@ MpmCaseParams read_mpm_params(const CaseSpec& spec) {
   p.poisson_ratio = o.in_range("poisson_ratio", 0.0, 0.5, false, p.poisson_ratio);
   if (p.poisson_ratio >= 0.5) o.fail("poisson_ratio", "must be in [0, 0.5)");
   p.volume_correction = o.boolean("volume_correction", p.volume_correction);
+  p.without_capillarity = o.boolean("without_capillarity", p.without_capillarity);
   if (spec.porous) {
     for (const char* key : {"porosity", "hydraulic_conductivity"})
       if (o.has(key)) o.fail(key, "is given by the case's \"porous\" section (porosity, permeability k: K = k rho g / mu)");
-    if (spec.porous->capillary_constant != 0.0)
-      throw InputError(spec.file, "/porous/capillary_constant", "method \"mpm\" has no capillary suction: must be 0");
+    if (spec.porous->capillary_constant != 0.0 && !p.without_capillarity)
+      throw InputError(spec.file, "/porous/capillary_constant",
+                       "method \"mpm\" has no capillary suction: must be 0 (or /methods/mpm/without_capillarity true)");
     p.porosity = spec.porous->porosity;
     p.hydraulic_conductivity = spec.porous->permeability * spec.porous->fluid_density * std::abs(spec.gravity[spec.dimension - 1]) /
                                spec.porous->fluid_viscosity;
@@ -163,8 +165,8 @@ ParticleView<D> MpmMethod<D>::view_of(const mpm::Particles<D>& ps) const {
                                      : mpm::water_kirchhoff<D>(ps.J[i], params.water_density, params.eos);
     pressure_[i] = -tau.trace() / (D * ps.J[i]);
     density_[i] = ps.m[i] / (ps.J[i] * ps.V0[i]);
-    if (!bed_[i]) continue;
-    phase_[i] = static_cast<std::uint8_t>(Phase::Boundary);
+    if (!porous_sand(ps, i)) continue;
+    if (bed_[i]) phase_[i] = static_cast<std::uint8_t>(Phase::Boundary);
     porosity_[i] = params.porosity;
     pore_volume_[i] = params.porosity * ps.J[i] * ps.V0[i];
     pore_pressure_[i] = ps.pressure[i];
@@ -177,7 +179,7 @@ ParticleView<D> MpmMethod<D>::view_of(const mpm::Particles<D>& ps) const {
   view.density = density_;
   view.support = support_field_;
   view.saturation = ps.saturation;
-  if (std::find(bed_.begin(), bed_.end(), 1) == bed_.end()) return view;
+  if (!solver_.mixture() && std::find(bed_.begin(), bed_.end(), 1) == bed_.end()) return view;
   view.porosity = porosity_;
   view.pore_volume = pore_volume_;
   view.pore_water_pressure = pore_pressure_;

@@ -22,19 +22,23 @@ namespace sc {
 ///   volume_correction       Tampubolon et al.'s volume correction of the return mapping (true)
 ///   porosity                n of the sand, in (0, 1)
 ///   hydraulic_conductivity  K [m/s] of the sand; the drag c_E = n² ρ_w g / K
+///   without_capillarity     run a case whose porous section has capillary suction without it (false):
+///                           MPM has none, its water enters the pores by gravity against the drag only
 struct MpmCaseParams {
   double cell_size = 2.0;
   double cfl = 0.4;
   double youngs_modulus = 3.537e5;
   double poisson_ratio = 0.3;
   bool volume_correction = true;
+  bool without_capillarity = false;
   double porosity = 0.4;
   double hydraulic_conductivity = 1e-3;
   double initial_saturation = 0.0;  ///< of a porous bed's pores ("porous"/"initial_saturation")
 };
 
 /// Reads and checks the case's "methods"/"mpm" object and that the case is one MPM can run (a tank,
-/// blocks of water, sand or porous bed, no meshes or adaptivity, no capillarity in a porous section, a
+/// blocks of water, sand or porous bed, no meshes or adaptivity, no capillarity in a porous section unless
+/// `without_capillarity`, a
 /// positive friction angle for sand). Throws InputError (the case file, the JSON path, the rule).
 /// Allocates nothing.
 MpmCaseParams read_mpm_params(const CaseSpec& spec);
@@ -58,10 +62,10 @@ class MpmMethod final : public ParticleAdapter<D, mpm::Particles<D>> {
   double time() const override { return solver_.time(); }
   long steps() const override { return steps_; }
   /// x, v, m, phase; pressure −tr τ / (D J) (water: the equation of state at J), seen through the
-  /// grid (mpm/grid_field.hpp); density
-  /// m / (J V0); the case's support radius; the sand's saturation (0 for water). A porous bed's sand
-  /// as a fixed porous phase (Phase::Boundary) with its porosity n, pore volume n J V0 and pore-water
-  /// pressure; its pore water is free water particles, so no water is held.
+  /// grid (mpm/grid_field.hpp); density m / (J V0); the case's support radius; the sand's saturation
+  /// (0 for water). Sand with water present is porous sand, with its porosity n, pore volume n J V0
+  /// and pore-water pressure; a porous bed's sand is shown as a fixed porous phase (Phase::Boundary).
+  /// The pore water is free water particles, so no water is held.
   ParticleView<D> particles() const override { return view_of(solver_.particles()); }
   /// The solver's stage times; the transfer's count is its substeps.
   std::vector<StageTime> stage_times() const override {
@@ -78,6 +82,8 @@ class MpmMethod final : public ParticleAdapter<D, mpm::Particles<D>> {
   const mpm::Particles<D>& state() const override { return solver_.particles(); }
   ParticleView<D> view_of(const mpm::Particles<D>& ps) const override;
   void check_state() const;
+  /// Whether particle i is sand with pores the view reports: a porous bed's, or any with water present.
+  bool porous_sand(const mpm::Particles<D>& ps, std::size_t i) const { return bed_[i] || (solver_.mixture() && ps.is_sand(i)); }
 
   mpm::MpmSolver<D> solver_;
   double dt_, support_;

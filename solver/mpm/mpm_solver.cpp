@@ -28,6 +28,7 @@ template <int D>
 MpmSolver<D>::MpmSolver(Params<D> params, Particles<D> particles) : params_(std::move(params)), ps_(std::move(particles)) {
   for (std::size_t i = 0; i < ps_.size(); ++i) (ps_.is_sand(i) ? sand_ : water_).push_back(i);
   mixture_ = !sand_.empty() && !water_.empty();
+  loaded_ = std::any_of(ps_.load.begin(), ps_.load.end(), [](const Vec<D>& f) { return !f.isZero(0.0); });
   nodes_.resize(params_.grid.node_count());
   affine_.resize(ps_.size());
   weights_.resize(ps_.size());
@@ -35,6 +36,7 @@ MpmSolver<D>::MpmSolver(Params<D> params, Particles<D> particles) : params_(std:
   for (const std::size_t i : sand_) tau_[i] = hencky_kirchhoff<D>(ps_.Fe[i], params_.sand);
   clamped_.resize(params_.grid.node_count());
   for (std::size_t k = 0; k < clamped_.size(); ++k) clamped_[k] = clamped(params_.grid.position(params_.grid.axes(k)));
+  free_sand_ = std::any_of(sand_.begin(), sand_.end(), [&](std::size_t i) { return !clamped(ps_.x[i]); });
 }
 
 template <int D>
@@ -48,8 +50,11 @@ bool MpmSolver<D>::clamped(const Vec<D>& x) const {
 template <int D>
 double MpmSolver<D>::stable_step() const {
   double c = 0.0, v = 0.0;
-  if (!sand_.empty()) c = std::sqrt((params_.sand.lambda + 2.0 * params_.sand.mu) / params_.sand_density);
-  if (!water_.empty()) c = std::max(c, params_.eos.sound_speed);
+  const double c_s2 = (params_.sand.lambda + 2.0 * params_.sand.mu) / params_.sand_density;
+  const double c_w = params_.eos.sound_speed;
+  if (!sand_.empty()) c = std::sqrt(c_s2);
+  if (!water_.empty()) c = std::max(c, c_w);
+  if (mixture_ && free_sand_) c = std::sqrt(c_s2 + mixture_wave_factor(params_.porosity, params_.water_density, params_.sand_density) * c_w * c_w);
   for (const Vec<D>& u : ps_.v) v = std::max(v, u.norm());
   return params_.cfl * params_.grid.h / (c + v);
 }
@@ -114,8 +119,11 @@ void MpmSolver<D>::affine_momenta(double dt) {
 }
 
 /// Particle-to-grid, gathered per node: mass Σ w m, momentum Σ w (m v + A (x_i − x_p)) and volume
-/// Σ w V0 of each phase, then the velocity momentum/mass. [Jiang 2015: APIC P2G] In a mixture also
-/// the water's pressure Σ w m p / Σ w m and mixture volume Σ w J V0 / n, the node's porosity n_i,
+/// Σ w V0 of each phase, then the velocity momentum/mass. [Jiang 2015: APIC P2G] The particles'
+/// loads add their impulse Σ w Δt f_p, the nodal external force of the particle's share of a surface
+/// traction. [Sulsky 1994: external forces on the grid] In a mixture also
+/// the water's pressure Σ w m p / Σ w m and mixture volume Σ w J V0 / n, the sand's Σ w J V0, the
+/// node's porosity n_i (node_porosity),
 /// and the pore pressure's impulse on the mixture, Δt Σ_water w J p (V0/n) D⁻¹ (x_i − x_p) (the MLS
 /// force of −p over the mixture volume the water fills, ≈ −Δt ∇p V), of which the water takes n_i and
 /// the sand 1 − n_i. [Hu 2018: MLS-MPM force] [Zienkiewicz & Shiomi 1984: u-U equations]
@@ -134,7 +142,7 @@ void MpmSolver<D>::gather(double dt) {
   };
   const double Dinv = inertia_inverse(grid.h);
   const auto one_phase = [&](const Bins& bins, const std::array<long, D>& node, double& m, double& V, Vec<D>& v,
-                             PoreSums* pore) {
+                             double* V_now, PoreSums* pore) {
     const Vec<D> xi = grid.position(node);
     Vec<D> p = Vec<D>::Zero();
     m = V = 0.0;
@@ -143,7 +151,9 @@ void MpmSolver<D>::gather(double dt) {
       const double w = weight<D>(weights_[q], offset);
       m += w * ps_.m[q];
       V += w * ps_.V0[q];
+      if (V_now) *V_now += w * ps_.J[q] * ps_.V0[q];
       p += w * (ps_.m[q] * ps_.v[q] + affine_[q] * r);
+      if (loaded_) p += w * dt * ps_.load[q];
       if (!pore) return;
       const double mixture = ps_.J[q] * ps_.V0[q] / ps_.porosity[q];
       pore->mass_pressure += w * ps_.m[q] * ps_.pressure[q];
@@ -157,11 +167,12 @@ void MpmSolver<D>::gather(double dt) {
   for (long k = 0; k < n; ++k) {
     const std::array<long, D> node = grid.axes(static_cast<std::size_t>(k));
     PoreSums pore;
-    one_phase(sand_bins_, node, nodes_.m_s[k], nodes_.V_s[k], nodes_.v_s[k], nullptr);
-    one_phase(water_bins_, node, nodes_.m_w[k], nodes_.V_w[k], nodes_.v_w[k], mixture_ ? &pore : nullptr);
+    double sand_now = 0.0;  // Σ w J V0 of the sand
+    one_phase(sand_bins_, node, nodes_.m_s[k], nodes_.V_s[k], nodes_.v_s[k], &sand_now, nullptr);
+    one_phase(water_bins_, node, nodes_.m_w[k], nodes_.V_w[k], nodes_.v_w[k], nullptr, mixture_ ? &pore : nullptr);
     nodes_.saturation[k] = node_saturation(nodes_.V_s[k], nodes_.V_w[k], params_.porosity);
     if (!mixture_) continue;
-    const double n_i = node_porosity(nodes_.V_s[k], pore.mixture_volume, params_.porosity);
+    const double n_i = node_porosity(nodes_.V_s[k], sand_now, pore.mixture_volume, params_.porosity);
     nodes_.porosity[k] = n_i;
     if (nodes_.m_w[k] <= 0.0) {
       nodes_.pressure[k] = 0.0;

@@ -63,13 +63,17 @@ class MpmSolver {
   /// One MPM step of size dt: stresses, particle-to-grid, grid update and exchange, grid-to-particle
   /// with the deformation update and the return mapping.
   void substep(double dt);
-  /// cfl h / (c + max |v_p|), c the fastest wave speed of the phases present.
+  /// cfl h / (c + max |v_p|), c the fastest wave speed of the phases present: the larger of the
+  /// sand's √((λ + 2μ)/ρ_s) and the water's sound speed c_w; with sand that moves in a mixture, the
+  /// bound √(c_s² + mixture_wave_factor c_w²) of the coupled waves (exchange.hpp).
   double stable_step() const;
 
   double time() const { return time_; }
   const Particles<D>& particles() const { return ps_; }
   const Params<D>& params() const { return params_; }
   const Nodes<D>& nodes() const { return nodes_; }
+  /// Both phases are present: the pore pressure couples them.
+  bool mixture() const { return mixture_; }
   const StageClock<MpmStage>& timers() const { return timers_; }
   StageClock<MpmStage>& timers() { return timers_; }
   /// The Kirchhoff stress of particle i now (Hencky for sand, the equation of state for water).
@@ -93,6 +97,8 @@ class MpmSolver {
   std::vector<std::size_t> sand_, water_;  // particle indices of each phase, in order
   std::vector<std::uint8_t> clamped_;       // per node: 1 where a clamp holds the sand
   bool mixture_ = false;                    // both phases present: the pore pressure couples them
+  bool loaded_ = false;                     // some particle carries a load
+  bool free_sand_ = false;                  // some sand particle lies outside every clamp
   bool transferred_ = false;                // a grid-to-particle transfer has set the water's porosity
   Bins sand_bins_, water_bins_;
   std::vector<Mat<D>> affine_;              // m C − Δt V0 D⁻¹ τ of each particle

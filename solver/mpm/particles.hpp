@@ -27,6 +27,9 @@ struct Particles {
   /// pressure Σ_i w_ip p_i of the last grid-to-particle transfer.
   std::vector<double> pressure;
   std::vector<std::uint8_t> phase;  ///< Phase as an integer (Water or Sand)
+  /// An external force on the particle [N], constant in time: its share of a load on the material's
+  /// surface (a traction t on the particle's face dx^(D−1) gives t dx^(D−1)). Zero unless set.
+  std::vector<Vec<D>> load;
 
   std::size_t size() const { return x.size(); }
   bool is_sand(std::size_t i) const { return phase[i] == static_cast<std::uint8_t>(Phase::Sand); }
@@ -44,6 +47,7 @@ struct Particles {
     porosity.push_back(n);
     pressure.push_back(0.0);
     phase.push_back(static_cast<std::uint8_t>(ph));
+    load.push_back(Vec<D>::Zero());
   }
 };
 
