@@ -390,7 +390,7 @@ BOOST_AUTO_TEST_CASE(a_dem_run_built_through_the_registry_settles_on_its_springs
   BOOST_TEST(checksum[0] == checksum[1]);
 }
 
-BOOST_AUTO_TEST_CASE(a_dem_case_with_water_or_a_bad_parameter_is_rejected_with_its_path) {
+BOOST_AUTO_TEST_CASE(a_dem_case_with_a_porous_bed_or_a_bad_parameter_is_rejected_with_its_path) {
   json doc = small_dem_case_json();
   doc["methods"]["dem"]["restitution"] = 0.0;
   try {
@@ -400,10 +400,11 @@ BOOST_AUTO_TEST_CASE(a_dem_case_with_water_or_a_bad_parameter_is_rejected_with_i
     BOOST_TEST(e.json_path() == "/methods/dem/restitution");
   }
   doc = small_dem_case_json();
-  doc["blocks"].push_back({{"phase", "water"}, {"min", {0.2, 0.0}}, {"max", {0.3, 0.1}}});
+  doc["porous"] = {{"porosity", 0.4}, {"permeability", 1e-9}};
+  doc["blocks"].push_back({{"phase", "porous_bed"}, {"min", {0.2, 0.0}}, {"max", {0.3, 0.1}}});
   try {
     check_method(load_case(write_case(doc)));
-    BOOST_ERROR("a water block was accepted for DEM");
+    BOOST_ERROR("a porous_bed block was accepted for DEM");
   } catch (const InputError& e) {
     BOOST_TEST(e.json_path() == "/blocks/1/phase");
   }

@@ -123,4 +123,12 @@ inline double willett_force(double r_eff, double gap, double volume, double gamm
   return f0 / (1.0 + 2.1 * s + 10.0 * s * s);
 }
 
+/// Pull-off force of one coarse-grained bridge, for grains of diameter d that stand for the sand of
+/// a site and must give the packing the bulk cohesion c of a case [Rumpf: tensile strength of a
+/// bridged packing, σ_t = ((1 − ε)/ε) F/d^{D−1}; ours: c = σ_t tan φ (docs/equations.md §7.8)]:
+///   F0 = c ε d^{D−1} / ((1 − ε) tan φ)   (per metre of depth in 2-D).
+inline double bridge_pull_off(double c, double tan_phi, double porosity, double d, int dim) {
+  return c * porosity * std::pow(d, dim - 1) / ((1.0 - porosity) * tan_phi);
+}
+
 }  // namespace sc::dem

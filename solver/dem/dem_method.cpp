@@ -15,6 +15,7 @@ namespace {
 double material_height(const CaseSpec& spec, int dim) {
   double lo = INFINITY, hi = -INFINITY;
   for (const BlockSpec& b : spec.blocks) {
+    if (b.fill != BlockFill::Sand) continue;
     lo = std::min(lo, b.min[dim - 1]);
     hi = std::max(hi, b.max[dim - 1]);
   }
@@ -72,6 +73,31 @@ void seed_grains(const Vec<D>& lo, const Vec<D>& hi, double dx, double rho, doub
   }
 }
 
+/// The grains' water, bridges and coupling from the case (docs/equations.md §7.5-§7.9): capacity
+/// fraction c_f the porous section's porosity (0.4 without one), w_f and k_p DEM's own; with
+/// bridges, Willett's law whose pull-off force 2πRγ (R = dx/2, θ = 0) is the coarse-grained bridge
+/// of the case's cohesion c0 (bridge_pull_off); the coupling kernel the SPH support h, its viscosity
+/// the SPH water's, the grain pressure ρ_w |g| h and the absorption reach half a spacing (a water
+/// particle's site touching the grain).
+template <int D>
+void wet_params(const CaseSpec& spec, const DemCaseParams& own, double dx, dem::Params& p) {
+  const SimulationParams sph = SimulationParams::from_case(spec, dx);
+  p.water_density = sph.water.rest_density;
+  if (spec.porous) p.capacity_fraction = spec.porous->porosity;
+  p.wet_threshold = own.wet_threshold;
+  p.propagation_rate = own.propagation_rate;
+  if (own.bridges) {
+    p.bridge = dem::BridgeLaw::Willett;
+    const double f0 = dem::bridge_pull_off(spec.sand.cohesion, std::tan(spec.sand.friction_angle_deg * pi / 180.0),
+                                           p.capacity_fraction, dx, D);
+    p.surface_tension = f0 / (2.0 * pi * 0.5 * dx);
+  }
+  p.coupling_support = sph.support_ratio * dx;
+  p.coupling_viscosity = sph.water.viscosity;
+  p.grain_pressure = p.water_density * to_vec<D>(spec.gravity).norm() * p.coupling_support;
+  p.absorb_distance = 0.5 * dx;
+}
+
 /// Contact parameters of the case: the spring holds the material's full height with the asked
 /// overlap; the normal dashpot gives the asked restitution for a pair of equal grains, and the
 /// tangential and rolling dashpots the same damping ratio ζ for their springs (pair of equal grains:
@@ -90,6 +116,7 @@ dem::Params contact_params(const CaseSpec& spec, const DemCaseParams& own, doubl
   p.friction = own.friction;
   p.wall_friction = own.wall_friction;
   p.rolling_friction = own.rolling_friction;
+  wet_params<D>(spec, own, dx, p);
   return p;
 }
 
@@ -148,6 +175,18 @@ void append(const dem::Grains<D>& from, dem::Grains<D>& to) {
   }
 }
 
+/// The case without its sand blocks and porous section: the SPH scene of its water. Its particles
+/// collide with the tank's sides (Müller 2003's collision, boundary/wall_collision.hpp): its density
+/// does not count the grains, so grains settling on it can press it through the wall particles.
+CaseSpec water_only(const CaseSpec& spec) {
+  CaseSpec water = spec;
+  std::erase_if(water.blocks, [](const BlockSpec& b) { return b.fill != BlockFill::Water; });
+  water.porous.reset();
+  water.has_sand = false;
+  water.tank->collision = true;
+  return water;
+}
+
 }  // namespace
 
 DemCaseParams read_dem_params(const CaseSpec& spec) {
@@ -162,35 +201,50 @@ DemCaseParams read_dem_params(const CaseSpec& spec) {
   p.overlap = o.in_range("overlap", 0.0, 0.1, true, p.overlap);
   p.polydispersity = o.in_range("polydispersity", 0.0, 0.5, false, p.polydispersity);
   p.packed = o.boolean("packed", p.packed);
+  p.wet_threshold = o.in_range("wet_threshold", 0.0, 1.0, false, p.wet_threshold);
+  if (p.wet_threshold <= 0.0) o.fail("wet_threshold", "must be in (0, 1]");
+  p.moisture = o.in_range("moisture", 0.0, p.wet_threshold, false, p.moisture);
+  p.propagation_rate = o.non_negative("propagation_rate", p.propagation_rate);
+  if (p.propagation_rate * spec.dt_max > 1.0)
+    o.fail("propagation_rate", "times the case's step (time.dt) must be at most 1 (a grain gives at most its excess)");
+  p.bridges = o.boolean("bridges", p.bridges);
+  if (p.bridges && !(spec.sand.cohesion > 0.0))
+    o.fail("bridges", "needs the case's sand cohesion > 0 (the bridges' pull-off force comes from it)");
   o.finish();
-  check_tank_scene(spec, "dem", "its closed sides are the contact walls", "runs dry grains; it has no porous flow");
+  check_tank_scene(spec, "dem", "its closed sides are the contact walls", "");
   double g2 = 0.0;
   for (const double g : spec.gravity) g2 += g * g;
   if (g2 == 0.0) throw InputError(spec.file, "/gravity", "method \"dem\" needs gravity (the weight of the material sets the contact stiffness)");
   if (spec.blocks.empty()) throw InputError(spec.file, "/blocks", "method \"dem\" needs at least one sand block");
   for (std::size_t b = 0; b < spec.blocks.size(); ++b)
-    if (spec.blocks[b].fill != BlockFill::Sand)
+    if (spec.blocks[b].fill != BlockFill::Sand && spec.blocks[b].fill != BlockFill::Water)
       throw InputError(spec.file, "/blocks/" + std::to_string(b) + "/phase",
-                       "method \"dem\" runs sand blocks only (its coupling with SPH water is not behind the seam)");
+                       "method \"dem\" runs sand and water blocks only");
   return p;
 }
 
 template <int D>
 DemMethod<D>::DemMethod(dem::Grains<D> grains, const dem::Params& params, std::vector<dem::Plane<D>> walls,
-                        const Vec<D>& gravity, double dt, int substeps)
-    : ParticleAdapter<D, dem::Grains<D>>(grains),
+                        const Vec<D>& gravity, double dt, double contact_step, std::optional<Simulator<D>> water)
+    : ParticleAdapter<D, DemFrame<D>>(DemFrame<D>{}),
       grains_(std::move(grains)),
       params_(params),
       walls_(std::move(walls)),
       gravity_(gravity),
       dt_(dt),
-      substeps_(substeps) {}
+      contact_step_(contact_step),
+      water_(std::move(water)) {
+  wet_ = water_.has_value();
+  for (const double w : grains_.water) wet_ = wet_ || w > 0.0;
+  refresh_frame();
+  this->keep_last_good();
+}
 
 template <int D>
-double DemMethod<D>::step() {
-  this->keep_last_good();
-  const double h = dt_ / substeps_;
-  for (int s = 0; s < substeps_; ++s) {
+void DemMethod<D>::step_grains(double dt) {
+  const int substeps = std::max(1, static_cast<int>(std::ceil(dt / contact_step_ - 1e-9)));
+  const double h = dt / substeps;
+  for (int s = 0; s < substeps; ++s) {
     {
       auto scope = timers_.time(dem::DemStage::Contacts);
       dem::update_neighbours(grains_, params_, cells_);
@@ -199,30 +253,75 @@ double DemMethod<D>::step() {
     auto scope = timers_.time(dem::DemStage::Integration);
     dem::integrate(grains_, params_, h);
   }
-  for (std::size_t i = 0; i < grains_.size(); ++i)
-    if (!grains_.x[i].allFinite() || !grains_.v[i].allFinite())
-      throw BlowUpError(steps_, time_, static_cast<long>(i), "sand", grains_.x[i].allFinite() ? "v" : "x", "not finite");
-  time_ += dt_;
-  ++steps_;
-  return dt_;
+  contact_steps_ += substeps;
 }
 
 template <int D>
-ParticleView<D> DemMethod<D>::view_of(const dem::Grains<D>& g) const {
-  mass_.resize(g.size());
-  density_.resize(g.size());
-  support_.resize(g.size());
-  phase_.assign(g.size(), static_cast<std::uint8_t>(Phase::Sand));
-  for (std::size_t i = 0; i < g.size(); ++i) {
-    mass_[i] = g.mass(i);
-    density_[i] = g.mass(i) / g.volume(i);
-    support_[i] = g.radius[i];
+double DemMethod<D>::step() {
+  this->keep_last_good();
+  double dt = dt_;
+  if (water_) {
+    auto scope = timers_.time(dem::DemStage::Water);
+    dt = water_->step();
   }
-  ParticleView<D> view = this->motion(g);
-  view.m = mass_;
-  view.phase = phase_;
-  view.density = density_;
-  view.support = support_;
+  step_grains(dt);
+  for (std::size_t i = 0; i < grains_.size(); ++i)
+    if (!grains_.x[i].allFinite() || !grains_.v[i].allFinite())
+      throw BlowUpError(steps_, time_, static_cast<long>(i), "sand", grains_.x[i].allFinite() ? "v" : "x", "not finite");
+  if (water_) {
+    auto scope = timers_.time(dem::DemStage::Water);
+    dem::exchange_with_water(grains_, water_->particles(), params_, dt, exchange_);
+  }
+  time_ += dt;
+  ++steps_;
+  refresh_frame();
+  return dt;
+}
+
+template <int D>
+void DemMethod<D>::refresh_frame() {
+  DemFrame<D>& f = frame_;
+  const dem::Grains<D>& g = grains_;
+  f = DemFrame<D>{};
+  f.wet = wet_;
+  for (std::size_t i = 0; i < g.size(); ++i) {
+    f.x.push_back(g.x[i]);
+    f.v.push_back(g.v[i]);
+    f.m.push_back(g.mass(i));
+    f.density.push_back(g.mass(i) / g.volume(i));
+    f.support.push_back(g.radius[i]);
+    f.phase.push_back(static_cast<std::uint8_t>(Phase::Sand));
+    if (!wet_) continue;
+    f.porosity.push_back(params_.capacity_fraction);
+    f.pore_volume.push_back(g.capacity(i, params_) / params_.water_density);
+    f.held.push_back(g.water[i]);
+    f.saturation.push_back(g.saturation(i, params_));
+  }
+  if (!water_) return;
+  const ParticleSet<D>& w = water_->particles();
+  for (std::size_t i = 0; i < w.size(); ++i) {
+    f.x.push_back(w.x[i]);
+    f.v.push_back(w.v[i]);
+    f.m.push_back(w.m[i]);
+    f.density.push_back(w.rho[i]);
+    f.support.push_back(w.h[i]);
+    f.phase.push_back(w.phase[i]);
+    for (auto* field : {&f.porosity, &f.pore_volume, &f.held, &f.saturation}) field->push_back(0.0);
+  }
+}
+
+template <int D>
+ParticleView<D> DemMethod<D>::view_of(const DemFrame<D>& f) const {
+  ParticleView<D> view = this->motion(f);
+  view.m = f.m;
+  view.phase = f.phase;
+  view.density = f.density;
+  view.support = f.support;
+  if (!f.wet) return view;
+  view.porosity = f.porosity;
+  view.pore_volume = f.pore_volume;
+  view.held_water = f.held;
+  view.saturation = f.saturation;
   return view;
 }
 
@@ -232,6 +331,7 @@ std::unique_ptr<Method<D>> make_dem_method(const CaseSpec& spec, double dx) {
   dem::Grains<D> g;
   for (std::size_t b = 0; b < spec.blocks.size(); ++b) {
     const BlockSpec& block = spec.blocks[b];
+    if (block.fill != BlockFill::Sand) continue;
     if (own.packed) append<D>(packed_block<D>(spec, own, dx, b), g);
     else seed_grains<D>(to_vec<D>(block.min), to_vec<D>(block.max), dx, spec.sand.rest_density, own.polydispersity,
                         static_cast<unsigned>(b + 1), g);
@@ -240,9 +340,13 @@ std::unique_ptr<Method<D>> make_dem_method(const CaseSpec& spec, double dx) {
     throw InputError(spec.file, "/blocks", "method \"dem\": no grain fits in the sand blocks at spacing " +
                                                json(dx).dump() + " m");
   const dem::Params p = contact_params<D>(spec, own, dx, g);
-  const int substeps = static_cast<int>(std::ceil(spec.dt_max / dem::stable_step(g, p) - 1e-9));
+  for (std::size_t i = 0; i < g.size(); ++i) g.water[i] = own.moisture * g.capacity(i, p);
+  const double h_max = dem::stable_step(g, p);
+  const CaseSpec water = water_only(spec);
+  std::optional<Simulator<D>> sph;
+  if (!water.blocks.empty()) sph.emplace(build_scene<D>(water, dx), SimulationParams::from_case(water, dx));
   return std::make_unique<DemMethod<D>>(std::move(g), p, tank_planes<D>(*spec.tank), to_vec<D>(spec.gravity),
-                                        spec.dt_max, std::max(1, substeps));
+                                        spec.dt_max, h_max, std::move(sph));
 }
 
 template class DemMethod<2>;

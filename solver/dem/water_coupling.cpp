@@ -4,6 +4,7 @@
 #include <limits>
 #include <vector>
 
+#include "dem/dem_forces.hpp"
 #include "water/pressure_force.hpp"
 #include "water/viscosity_force.hpp"
 
@@ -85,11 +86,17 @@ std::size_t absorb_water(Grains<D>& g, ParticleSet<D>& water, const CouplingGrid
   for (std::size_t i = 0; i < water.size(); ++i) {
     if (taker[i] == none) continue;
     const std::size_t k = taker[i];
-    mass[k] += water.m[i];
-    held[k] += water.m[i];
-    momentum[k] += water.m[i] * water.v[i];
-    water.queue_remove(i);
-    ++absorbed;
+    const double take = std::min(water.m[i], g.capacity(k, p) - held[k]);
+    if (!(take > 0.0)) continue;
+    mass[k] += take;
+    held[k] += take;
+    momentum[k] += take * water.v[i];
+    if (take == water.m[i]) {
+      water.queue_remove(i);
+      ++absorbed;
+    } else {
+      water.m[i] -= take;
+    }
   }
   for (std::size_t k = 0; k < g.size(); ++k) {
     if (held[k] == g.water[k]) continue;
@@ -100,12 +107,27 @@ std::size_t absorb_water(Grains<D>& g, ParticleSet<D>& water, const CouplingGrid
   return absorbed;
 }
 
+template <int D>
+void exchange_with_water(Grains<D>& g, ParticleSet<D>& water, const Params& p, double dt, ExchangeGrids<D>& grids) {
+  for (auto& f : water.force) f.setZero();
+  for (auto& f : g.force) f.setZero();
+  bin_coupling(g, water, p, grids.coupling);
+  coupling_forces(g, water, grids.coupling, p);
+  for (std::size_t i = 0; i < water.size(); ++i)
+    if (water.phase_of(i) == Phase::Water) water.v[i] += (dt / water.m[i]) * water.force[i];
+  for (std::size_t k = 0; k < g.size(); ++k) g.v[k] += (dt / g.mass(k)) * g.force[k];
+  absorb_water(g, water, grids.coupling, p);
+  bin_grains(g, p, grids.grains);
+  propagate_wetness(g, grids.grains, p, dt);
+}
+
 #define SC_DEM_COUPLING(D)                                                                                     \
   template void bin_coupling<D>(const Grains<D>&, const ParticleSet<D>&, const Params&, CouplingGrids<D>&);   \
   template Vec<D> water_grain_force<D>(const ParticleSet<D>&, std::size_t, const Grains<D>&, std::size_t,     \
                                        const Params&);                                                        \
   template void coupling_forces<D>(Grains<D>&, ParticleSet<D>&, const CouplingGrids<D>&, const Params&);      \
-  template std::size_t absorb_water<D>(Grains<D>&, ParticleSet<D>&, const CouplingGrids<D>&, const Params&);
+  template std::size_t absorb_water<D>(Grains<D>&, ParticleSet<D>&, const CouplingGrids<D>&, const Params&); \
+  template void exchange_with_water<D>(Grains<D>&, ParticleSet<D>&, const Params&, double, ExchangeGrids<D>&);
 SC_DEM_COUPLING(2)
 SC_DEM_COUPLING(3)
 #undef SC_DEM_COUPLING

@@ -5,13 +5,14 @@
 // - pressure and viscous forces between a water particle and a grain, equal and opposite;
 // - absorption: a water particle next to a dry or moist grain is taken up, its mass becoming water
 //   held by the grain and its momentum joining the grain's.
-// Order within a coupled step: grain_forces (solver/dem/dem_forces.hpp) and the SPH water forces,
-// then coupling_forces (adds to both), integrate both, then absorb_water (removes water particles)
-// and propagate_wetness.
+// Order within a coupled step: the grains and the SPH water each advance over the step with their
+// own forces, then exchange_with_water (the coupling forces as an impulse on both, absorption,
+// wetness propagation). DemMethod (solver/dem/dem_method.hpp) runs it behind the method seam.
 #pragma once
 #include "core/particle_set.hpp"
 #include "neighbours/cell_grid.hpp"
 #include "dem/grains.hpp"
+#include "dem/wetness.hpp"
 
 namespace sc::dem {
 
@@ -39,11 +40,29 @@ Vec<D> water_grain_force(const ParticleSet<D>& water, std::size_t i, const Grain
 template <int D>
 void coupling_forces(Grains<D>& g, ParticleSet<D>& water, const CouplingGrids<D>& grids, const Params& p);
 
-/// Absorbs every water particle within absorb_distance of the surface of a grain that is not
-/// over-wet (the nearest such grain, lower index on ties): its mass joins the grain's held water and
-/// its momentum the grain's (total mass, water and momentum conserved). Removes the absorbed
-/// particles from `water` (compact). Returns how many were absorbed.
+/// Absorbs water particles within absorb_distance of the surface of a grain that is not over-wet
+/// (the nearest such grain, lower index on ties) [Rungjiratananon 2008: absorption, bounded]: the
+/// grain takes the particle's mass up to its capacity (w <= 1, the paper's w_max = 1), in water
+/// index order; the mass taken joins the grain's held water and carries the particle's velocity
+/// into the grain's momentum (total mass, water and momentum conserved). A particle taken whole is
+/// removed from `water` (compact), one taken in part keeps the rest of its mass and its velocity.
+/// Returns how many were removed.
 template <int D>
 std::size_t absorb_water(Grains<D>& g, ParticleSet<D>& water, const CouplingGrids<D>& grids, const Params& p);
+
+/// Scratch of exchange_with_water: its cell grids.
+template <int D>
+struct ExchangeGrids {
+  CouplingGrids<D> coupling;
+  CellGrid<D> grains;
+};
+
+/// The exchange of one coupled step of size dt, after the grains and the water have each advanced
+/// with their own forces [Rungjiratananon 2008: water-grain pressure and viscosity, absorption,
+/// wetness propagation]: the water-grain forces of the positions reached, as an impulse dt F on
+/// both sides (v += dt F/m: equal and opposite, momentum conserved to round-off), then
+/// absorb_water and propagate_wetness. Overwrites g.force and water.force.
+template <int D>
+void exchange_with_water(Grains<D>& g, ParticleSet<D>& water, const Params& p, double dt, ExchangeGrids<D>& grids);
 
 }  // namespace sc::dem

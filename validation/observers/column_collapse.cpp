@@ -5,7 +5,8 @@
 //   back_wall_height_ratio  height of the deposit within two spacings of the back wall / H0;
 //   rest_energy_ratio       final kinetic energy / its peak (the deposit must be at rest);
 // with porous sand and water (wet_sand_collapse), also the water balance of docs/references.md §8:
-//   water_balance_rel_error, saturation_violation (porous_probe.hpp).
+//   water_balance_rel_error, saturation_violation (porous_probe.hpp). Method-neutral: SPH's porous
+//   sand and DEM's grains both show their water in the view's porosity, pore volume and held water.
 // Series: the final surface profile against the initial column and the reference bands.
 #include <cmath>
 
