@@ -35,11 +35,27 @@ bool may_interact(const Grains<D>& g, std::size_t i, std::size_t j, const Params
   return p.bridge != BridgeLaw::None || (g.x[j] - g.x[i]).squaredNorm() < reach * reach;
 }
 
-/// The spring grain i kept of its contact with `key` last step, or a relaxed one for a new contact.
+/// Whether grain i can touch the wall: its dry radius reaches the plane (the wet radius is never
+/// larger). Most grains of a box are far from its walls, and this test spares them the contact law.
 template <int D>
-Spring<D> previous_spring(const std::vector<Spring<D>>& springs, std::uint32_t key) {
-  for (const Spring<D>& s : springs)
-    if (s.other == key) return s;
+bool may_touch(const Grains<D>& g, std::size_t i, const Plane<D>& wall) {
+  return (g.x[i] - wall.point).dot(wall.normal) < g.radius[i];
+}
+
+/// The spring grain i kept of its contact with `key` last step, or a relaxed one for a new contact.
+/// The contacts are visited in the order they were kept (neighbour list, then walls), so the search
+/// starts at `next`, just after the last one found, and wraps around: one comparison per contact
+/// instead of a scan of all of them.
+template <int D>
+Spring<D> previous_spring(const std::vector<Spring<D>>& springs, std::uint32_t key, std::size_t& next) {
+  const std::size_t n = springs.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t at = (next + k) % n;
+    if (springs[at].other == key) {
+      next = at + 1;
+      return springs[at];
+    }
+  }
   Spring<D> fresh;
   fresh.other = key;
   return fresh;
@@ -50,7 +66,9 @@ Spring<D> previous_spring(const std::vector<Spring<D>>& springs, std::uint32_t k
 template <int D>
 double interaction_range(const Grains<D>& g, const Params& p) {
   double r = 0.0, w = 0.0;
-  for (std::size_t i = 0; i < g.size(); ++i) {
+  const auto n = static_cast<std::ptrdiff_t>(g.size());
+#pragma omp parallel for schedule(static) reduction(max : r, w)  // exact: any threads
+  for (std::ptrdiff_t i = 0; i < n; ++i) {
     r = std::max(r, g.radius[i]);
     w = std::max(w, g.water[i]);
   }
@@ -124,8 +142,9 @@ void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, c
       Vec<D> f = g.mass(i) * gravity;
       Spin<D> t = Spin<D>::Zero();
       kept.clear();
+      std::size_t next = 0;
       const auto add = [&](std::uint32_t key, auto&& force_of) {
-        Spring<D> spring = previous_spring(g.springs[i], key);
+        Spring<D> spring = previous_spring(g.springs[i], key, next);
         const ContactForce<D> c = force_of(spring);
         f += c.force;
         t += c.torque;
@@ -135,7 +154,8 @@ void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, c
         if (may_interact(g, i, j, p)) add(j, [&](Spring<D>& spring) { return pair_force(g, i, j, p, dt, spring); });
       });
       for (std::size_t w = 0; w < walls.size(); ++w)
-        add(wall_key(w), [&](Spring<D>& spring) { return wall_force(g, i, walls[w], p, dt, spring); });
+        if (may_touch(g, i, walls[w]))
+          add(wall_key(w), [&](Spring<D>& spring) { return wall_force(g, i, walls[w], p, dt, spring); });
       g.force[i] = f;
       g.torque[i] = t;
       g.springs[i].assign(kept.begin(), kept.end());

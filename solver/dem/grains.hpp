@@ -77,8 +77,11 @@ struct Grains {
   double inertia(std::size_t i) const { return (D == 3 ? 0.4 : 0.5) * mass(i) * radius[i] * radius[i]; }
   /// Water held at saturation 1 [kg].
   double capacity(std::size_t i, const Params& p) const { return p.capacity_fraction * p.water_density * volume(i); }
-  /// The paper's wetness w: water held over capacity (0 dry, w_f the over-wet threshold).
-  double saturation(std::size_t i, const Params& p) const { return water[i] / capacity(i, p); }
+  /// The paper's wetness w: water held over capacity (0 dry, w_f the over-wet threshold). A dry
+  /// grain's is 0 without the division (the contact laws ask for it several times per pair).
+  double saturation(std::size_t i, const Params& p) const {
+    return water[i] == 0.0 ? 0.0 : water[i] / capacity(i, p);
+  }
   /// Radius shrinking with wetness, r = R − k_r w, bounded below by a fraction of R
   /// [Rungjiratananon 2008: wet radius].
   double wet_radius(std::size_t i, const Params& p) const {

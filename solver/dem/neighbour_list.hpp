@@ -21,7 +21,9 @@ class NeighbourList {
   bool stale(std::span<const Vec<D>> x, double range) const {
     if (x.size() != built_at_.size() || range > range_) return true;
     double moved = 0.0;
-    for (std::size_t i = 0; i < x.size(); ++i) moved = std::max(moved, (x[i] - built_at_[i]).squaredNorm());
+    const auto n = static_cast<std::ptrdiff_t>(x.size());
+#pragma omp parallel for schedule(static) reduction(max : moved)  // exact: any threads
+    for (std::ptrdiff_t i = 0; i < n; ++i) moved = std::max(moved, (x[i] - built_at_[i]).squaredNorm());
     return 4.0 * moved > skin_ * skin_;
   }
 
