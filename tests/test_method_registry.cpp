@@ -106,6 +106,7 @@ BOOST_AUTO_TEST_CASE(a_run_built_through_the_registry_steps_and_its_view_matches
     BOOST_TEST(s.seconds >= 0.0);
   }
   BOOST_TEST(std::count(stages.begin(), stages.end(), "neighbours") == 1);
+  BOOST_TEST(!run->own_steps().has_value());  // SPH's step is the case step
   BOOST_TEST(run->vtu_frame().ends_with("</VTKFile>\n"));
 }
 
@@ -336,6 +337,7 @@ BOOST_AUTO_TEST_CASE(an_mpm_run_built_through_the_registry_steps) {
     }
     BOOST_TEST(stages == (std::vector<std::string>{"transfer", "stress", "grid", "exchange"}));
     BOOST_TEST(substeps >= 40);
+    BOOST_TEST(run->own_steps().value() == substeps);  // bench's own steps: the MPM steps
     BOOST_TEST(run->vtu_frame().find("Name=\"saturation\"") != std::string::npos);
     checksum[threads - 1] = run->checksum();
   }
@@ -384,6 +386,9 @@ BOOST_AUTO_TEST_CASE(a_dem_run_built_through_the_registry_settles_on_its_springs
     BOOST_TEST(lowest < 0.0);                   // resting on the floor's spring
     BOOST_TEST(lowest > -0.01 * 0.5 * 0.01);    // by less than 1 % of the grain radius
     BOOST_TEST(run->stage_times().front().count > 200);  // several contact steps per case step
+    BOOST_TEST(run->own_steps().value() == run->stage_times().front().count);  // bench's own steps
+    run->reset_stage_times();
+    BOOST_TEST(run->own_steps().value() == 0);
     checksum[threads - 1] = run->checksum();
   }
   omp_set_num_threads(saved);

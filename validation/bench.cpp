@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 
 #include "data_root.hpp"
 #include "io/atomic_file.hpp"
@@ -78,6 +79,18 @@ double status_bytes(const std::string& key) {
   return 0.0;
 }
 
+/// The cost of one particle, in core time: the median step's milliseconds times the threads over the
+/// particles (walls included), as microseconds per particle per case step; for a method that takes
+/// `own_steps` steps of its own over the `steps` case steps (DEM, MPM), also per step of its own.
+void add_per_particle_times(json& entry, double median_ms, double threads, std::optional<long> own_steps, long steps) {
+  const double per_step = 1e3 * median_ms * threads / entry["particles"]["total"].get<double>();
+  entry["us_per_particle_step_per_core"] = per_step;
+  if (!own_steps || *own_steps <= 0) return;
+  const double own_per_step = static_cast<double>(*own_steps) / static_cast<double>(steps);
+  entry["own_steps_per_step"] = own_per_step;
+  entry["us_per_particle_own_step_per_core"] = per_step / own_per_step;
+}
+
 /// Runs `steps` steps of one scene, timing each, and returns its bench.json entry.
 template <int D>
 json bench_scene(const CaseSpec& spec, double dx, long steps) {
@@ -87,6 +100,7 @@ json bench_scene(const CaseSpec& spec, double dx, long steps) {
   Method<D>& sim = *method;
   json entry{{"scene", spec.name}, {"method", spec.method}, {"spacing", dx}, {"particles", count_phases(sim.particles())}};
   sim.reset_stage_times();
+  const auto threads = static_cast<double>(omp_get_max_threads());
   std::vector<double> ms;
   Progress progress(spec.name, steps * spec.dt_max);
   const double t_start = sim.time();
@@ -116,6 +130,7 @@ json bench_scene(const CaseSpec& spec, double dx, long steps) {
   entry["ms_per_step"] = {{"median", quantile(ms, 0.5)}, {"q1", quantile(ms, 0.25)}, {"q3", quantile(ms, 0.75)},
                           {"min", quantile(ms, 0.0)},    {"max", quantile(ms, 1.0)},  {"mean", 1e3 * total / steps}};
   entry["stage_ms_per_step"] = stages;
+  add_per_particle_times(entry, quantile(ms, 0.5), threads, sim.own_steps(), steps);
   entry["checksum"] = sim.checksum();
   entry["final_particles"] = count_phases(sim.particles());
   if (peak_known) {
@@ -192,6 +207,12 @@ void print_table(const json& entries) {
       std::printf("%-24s peak resident set %.0f MB: %.0f bytes per particle, %.0f above the %.0f MB held before the scene\n", "",
                   e["peak_resident_bytes"].get<double>() / 1e6, e["peak_resident_bytes_per_particle"].get<double>(),
                   e["scene_peak_bytes_per_particle"].get<double>(), e["resident_before_bytes"].get<double>() / 1e6);
+    if (e.contains("us_per_particle_own_step_per_core"))
+      std::printf("%-24s %.3f us per particle per step per core; %.1f steps of its own per step: %.3f us per particle per own step per core\n", "",
+                  e["us_per_particle_step_per_core"].get<double>(), e["own_steps_per_step"].get<double>(),
+                  e["us_per_particle_own_step_per_core"].get<double>());
+    else
+      std::printf("%-24s %.3f us per particle per step per core\n", "", e["us_per_particle_step_per_core"].get<double>());
     if (e.contains("adaptive_speedup"))
       std::printf("%-24s uniform %.1f ms/step (mean) vs adaptive %.1f: %.2fx faster; %.2fx fewer moving particles at the end\n", "",
                   e["uniform"]["ms_per_step"]["mean"].get<double>(), t["mean"].get<double>(), e["adaptive_speedup"].get<double>(),

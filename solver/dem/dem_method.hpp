@@ -97,7 +97,11 @@ class DemMethod final : public ParticleAdapter<D, DemFrame<D>> {
   std::vector<StageTime> stage_times() const override {
     return stage_times_of(dem::dem_stage_names, timers_, dem::DemStage::Contacts, contact_steps_);
   }
-  void reset_stage_times() override { timers_.reset(); }
+  void reset_stage_times() override {
+    timers_.reset();
+    contact_steps_ = 0;
+  }
+  std::optional<long> own_steps() const override { return contact_steps_; }
 
   const dem::Grains<D>& grains() const { return grains_; }
   const dem::Params& params() const { return params_; }

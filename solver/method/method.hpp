@@ -8,6 +8,7 @@
 // method's own probe, never in this interface.
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -87,6 +88,10 @@ class Method {
   /// Exclusive stage times (every instant in one stage), in the method's own stage order.
   virtual std::vector<StageTime> stage_times() const = 0;
   virtual void reset_stage_times() = 0;
+  /// The method's own time steps since the run started or the last reset_stage_times, for a method
+  /// that takes several per case step (DEM's contact steps, MPM's steps); none for one whose step is
+  /// the case step.
+  virtual std::optional<long> own_steps() const { return std::nullopt; }
   /// The current particles as a VTU document (ParaView), every particle field a point array.
   virtual std::string vtu_frame() const = 0;
   /// The state at the start of the last step, as a VTU document (written after a blow-up).

@@ -75,6 +75,7 @@ class MpmMethod final : public ParticleAdapter<D, mpm::Particles<D>> {
     solver_.timers().reset();
     substeps_ = 0;
   }
+  std::optional<long> own_steps() const override { return substeps_; }
 
   const mpm::MpmSolver<D>& solver() const { return solver_; }
 
