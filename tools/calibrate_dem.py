@@ -6,9 +6,12 @@ with grain friction mu (from 0.5) and rolling resistance mu_r = 0.05, 0.10, ...;
 the first pile steeper than phi + 3 deg, and mu_r is read off the least-squares line of the repose
 angle against mu_r through the sweep, at phi. When no mu_r up to 1 makes the pile that steep (its
 slope saturates once grains slide rather than roll), mu is raised by 0.1 and the sweep repeated.
+With --dimension 3 the pile is of spheres: the same stepped pyramid extruded across the channel of
+column_collapse_3d (its width, between its slip side walls), so that the 3-D cases of that channel
+are calibrated on grains packed and walled as theirs.
 Prints each run and the values to record in a case's "methods"/"dem".
 
-Usage: tools/calibrate_dem.py --phi 30 [--sandcastle build/sandcastle] [--mu 0.5]
+Usage: tools/calibrate_dem.py --phi 30 [--dimension 2|3] [--sandcastle build/sandcastle] [--mu 0.5]
 """
 import argparse
 import json
@@ -19,6 +22,11 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def read_case(name):
+    with open(os.path.join(ROOT, "cases", name, "case.json")) as f:
+        return json.load(f)
 
 
 def repose_angle(sandcastle, case, mu, mu_r, work):
@@ -38,6 +46,33 @@ def repose_angle(sandcastle, case, mu, mu_r, work):
     return float(match.group(1))
 
 
+def channel_pile(pile, channel):
+    """The 2-D pile case extruded across the 3-D channel case's width: x stays, the pile's height
+    becomes z, y spans the channel between the channel's side walls; only DEM runs it."""
+    tank = channel["tank"]
+    y0, y1 = tank["min"][1], tank["max"][1]
+    margin = pile["tank"]["min"][1] - pile["domain"]["min"][1]
+    case = json.loads(json.dumps(pile))
+    case["name"] = pile["name"] + "_channel"
+    case["description"] = f"The {pile['name']} pile across the channel of {channel['name']} (spheres, DEM only)."
+    case["dimension"] = 3
+    case["domain"] = {"min": [pile["domain"]["min"][0], y0 - margin, pile["domain"]["min"][1]],
+                      "max": [pile["domain"]["max"][0], y1 + margin, pile["domain"]["max"][1]]}
+    case["gravity"] = [0.0, 0.0, pile["gravity"][1]]
+    for block in case["blocks"]:
+        block["min"] = [block["min"][0], y0, block["min"][1]]
+        block["max"] = [block["max"][0], y1, block["max"][1]]
+    sides = pile["tank"]["sides"]
+    case["tank"] = {"min": [pile["tank"]["min"][0], y0, pile["tank"]["min"][1]],
+                    "max": [pile["tank"]["max"][0], y1, pile["tank"]["max"][1]],
+                    "sides": {"x-": sides["x-"], "x+": sides["x+"], "y-": tank["sides"]["y-"],
+                              "y+": tank["sides"]["y+"], "z-": sides["y-"], "z+": sides["y+"]}}
+    case["methods"] = {"dem": {}}
+    for tier in case["tiers"].values():
+        tier["methods"] = ["dem"]
+    return case
+
+
 def line(points):
     """Least-squares slope and intercept of y against x."""
     n = len(points)
@@ -53,10 +88,13 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--phi", type=float, required=True, help="bulk friction angle [deg]")
     parser.add_argument("--mu", type=float, default=0.5, help="first grain friction tried")
+    parser.add_argument("--dimension", type=int, choices=[2, 3], default=2,
+                        help="2: discs on the angle_of_repose pile; 3: spheres on it across column_collapse_3d's channel")
     parser.add_argument("--sandcastle", default=os.path.join(ROOT, "build", "sandcastle"))
     args = parser.parse_args()
-    with open(os.path.join(ROOT, "cases", "angle_of_repose", "case.json")) as f:
-        case = json.load(f)
+    case = read_case("angle_of_repose")
+    if args.dimension == 3:
+        case = channel_pile(case, read_case("column_collapse_3d"))
     mu = args.mu
     with tempfile.TemporaryDirectory(prefix="calibrate_dem_") as work:
         while mu <= 1.0 + 1e-9:
