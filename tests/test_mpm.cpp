@@ -1,13 +1,16 @@
 // Two-grid MPM after Tampubolon et al. 2017 (solver/mpm/): each test pins one formula of the method
 // (the nodal exchange, the Hencky stress, the return mapping and its volume correction, the MLS
-// force through a column at rest, the rest state of a cohesive block) or its determinism.
+// force through a column at rest, the rest state of a cohesive block, the wet cut against Rankine's
+// height) or its determinism.
 #include <boost/test/unit_test.hpp>
 #include <cmath>
 #include <omp.h>
+#include <optional>
 
 #include "core/checksum.hpp"
 #include "mpm/exchange.hpp"
 #include "mpm/mpm_solver.hpp"
+#include "reference/analytic/rankine.hpp"
 #include "reference/analytic/terzaghi.hpp"
 
 using namespace sc;
@@ -492,6 +495,172 @@ BOOST_AUTO_TEST_CASE(a_loaded_saturated_column_consolidates_as_terzaghi_says) {
   const std::vector<double> U = consolidation_degrees(Tv);
   for (std::size_t k = 0; k < Tv.size(); ++k)
     BOOST_TEST(std::abs(U[k] - analytic::terzaghi_consolidation_degree(Tv[k])) <= 0.03);
+}
+
+// [Mohr-Coulomb: unconfined strength] [Rankine: critical height] The method references' table of
+// Rankine heights (ρ_b = 1600 kg/m^3) to its millimetre: 0.088 m and 0.221 m for c = 200 and 500 Pa
+// at φ = 30°, 0.098 m and 0.245 m at 35°, the heights where the active thrust on the face vanishes.
+// The solver's plane cone with its apex at c cot φ is that Mohr-Coulomb material: a uniaxial
+// compression σ_yy = −q, σ_xx = 0 is elastic (left as it is) at q = 0.99 q_u and projected at
+// 1.01 q_u, q_u = 2c tan(45° + φ/2).
+BOOST_AUTO_TEST_CASE(the_plane_cone_has_mohr_coulombs_unconfined_strength_and_rankines_height) {
+  const double rho = 1600.0, g = 9.81;
+  BOOST_TEST(std::abs(analytic::rankine_critical_height(200.0, 30.0, rho, g) - 0.088) <= 5e-4);
+  BOOST_TEST(std::abs(analytic::rankine_critical_height(500.0, 30.0, rho, g) - 0.221) <= 5e-4);
+  BOOST_TEST(std::abs(analytic::rankine_critical_height(200.0, 35.0, rho, g) - 0.098) <= 5e-4);
+  BOOST_TEST(std::abs(analytic::rankine_critical_height(500.0, 35.0, rho, g) - 0.245) <= 5e-4);
+  for (const double phi : {30.0, 35.0}) {
+    const SandModel m = SandModel::from(2, 1e6, 0.3, phi, true);
+    const double c = 200.0, qu = analytic::unconfined_strength(c, phi);
+    // the active thrust ∫_0^H (ρ g z K_a − 2c √K_a) dz, K_a = tan²(45° − φ/2), at H = H_c
+    const double Hc = analytic::rankine_critical_height(c, phi, rho, g);
+    const double Ka = std::pow(std::tan((45.0 - phi / 2.0) * pi / 180.0), 2);
+    BOOST_TEST(std::abs(0.5 * rho * g * Hc * Hc * Ka - 2.0 * c * std::sqrt(Ka) * Hc) <= 1e-12 * rho * g * Hc * Hc);
+    for (const double factor : {0.99, 1.01}) {
+      // the log strain of the Kirchhoff stress (0, −q): τ_i = 2μ ε_i + λ tr ε
+      const Vec<2> tau(0.0, -factor * qu);
+      const double tr = tau.sum() / (2.0 * m.mu + 2.0 * m.lambda);
+      const Vec<2> eps = ((tau.array() - m.lambda * tr) / (2.0 * m.mu)).matrix();
+      const double change = (project_drucker_prager<2>(eps, c, 0.0, m).eps - eps).norm();
+      if (factor < 1.0)
+        BOOST_TEST(change == 0.0);
+      else
+        BOOST_TEST(change > 1e-3 * eps.norm());
+    }
+  }
+}
+
+/// The moist sand of the wet cut: the bulk density and a cohesion of the method references' Rankine
+/// table (docs/references.md §13), and the cut's width and grid cell [m].
+constexpr double cut_density = 1600.0, cut_cohesion = 200.0, cut_width = 0.2, cut_cell = 0.01;
+
+/// A vertical cut in plane strain: sand (E = 1e6 Pa, ν = 0.3, friction angle φ, cohesion
+/// cut_cohesion) cut_width wide on a rough floor (Coulomb, μ = tan φ) against a smooth wall at x = 0,
+/// a mirror, so that it stands for a block twice as wide; its face at x = cut_width is free, with
+/// 0.25 m of clear floor in front. The solver's cohesion is Mohr-Coulomb's c (the plane cone is
+/// Mohr-Coulomb's, cone_slope), so Rankine's H_c applies to it as it is.
+Params<2> cut_params(double phi) {
+  Params<2> p = box(cut_width + 0.25, 0.2, cut_cell);
+  p.sand = SandModel::from(2, 1e6, 0.3, phi, true);
+  p.sand_density = cut_density;
+  p.cohesion = cut_cohesion;
+  p.gravity = Vec<2>(0.0, -9.81);
+  p.rough = {false, false, true, false};
+  p.wall_friction = std::tan(phi * pi / 180.0);
+  return p;
+}
+
+/// The cut's particles, H high exactly: two per cell across, layers of equal thickness (at most half
+/// a cell) upwards, row by row, so that the last one is the top corner of the face.
+Particles<2> cut_particles(double H) {
+  const double dx = cut_cell / 2.0;
+  const long nx = std::lround(cut_width / dx), ny = std::lround(std::ceil(H / dx));
+  const double dy = H / static_cast<double>(ny);
+  Particles<2> ps;
+  for (long j = 0; j < ny; ++j)
+    for (long i = 0; i < nx; ++i)
+      ps.add(Vec<2>((i + 0.5) * dx, (j + 0.5) * dy), cut_density * dx * dy, dx * dy, Phase::Sand);
+  return ps;
+}
+
+/// How far particle k has moved from `start`, over H.
+double moved(const MpmSolver<2>& solver, const Particles<2>& start, std::size_t k, double H) {
+  return (solver.particles().x[k] - start.x[k]).norm() / H;
+}
+
+/// The top corner's displacement over H of a dry cut (cut_params, cut_particles) H high, 1 s after
+/// gravity comes on at rest, undamped: over six free-fall times √(2H/g) of the cuts below.
+double dry_cut_corner_moved(double phi, double H) {
+  const Particles<2> ps = cut_particles(H);
+  MpmSolver<2> solver(cut_params(phi), ps);
+  while (solver.time() < 1.0 - 1e-9) solver.advance(1e-2);
+  return moved(solver, ps, ps.size() - 1, H);
+}
+
+// [Rankine: critical height] A vertical cut of moist sand (c = 200 Pa, ρ_b = 1600 kg/m^3, plane
+// strain) with gravity switched on at rest: at 0.75 H_c it stands (the top corner of its face has
+// moved less than 1 % of H after 1 s, elastic settling included) and at 1.25 H_c it falls (the
+// corner has moved more than a quarter of H), at φ = 30° and 35° (H_c = 0.0883 and 0.0979 m): the
+// method references' ±25 %. The heights follow the friction angle through tan(45° + φ/2).
+BOOST_AUTO_TEST_CASE(a_cut_stands_below_rankines_height_and_falls_above_it) {
+  for (const double phi : {30.0, 35.0}) {
+    const double Hc = analytic::rankine_critical_height(cut_cohesion, phi, cut_density, 9.81);
+    const double low = dry_cut_corner_moved(phi, 0.75 * Hc), high = dry_cut_corner_moved(phi, 1.25 * Hc);
+    BOOST_TEST_MESSAGE("cut at phi " << phi << " (H_c " << Hc << " m): corner moved " << low << " H at 0.75 H_c, "
+                                     << high << " H at 1.25 H_c");
+    BOOST_TEST(low < 0.01);
+    BOOST_TEST(high > 0.25);
+  }
+}
+
+/// What wet_cut measured: the corner's displacement over H when the water started and at the end,
+/// the time from the water's start until the corner had moved a quarter of H (−1 if it had not), and
+/// the mean saturation of the sand then.
+struct Wetting {
+  double moved_dry = 0.0, moved = 0.0, fall_time = -1.0, saturation = 0.0;
+};
+
+/// The wetting of a standing cut (cut_params and cut_particles, φ = 30°, H = 0.75 H_c): 0.3 s under
+/// gravity dry (s = 0, c = c0), then every 0.05 s a row of water parcels at rest on its top, all of it
+/// but the two cells at the face (no water runs down the face), at `rate` [m/s] of water depth per
+/// time; the water seeps in through the exchange (porosity 0.4, K = 0.05 m/s, cfl 0.2), and the
+/// cohesion is c0 (1 − s) unless `cohesion_loss` is off. The solver is rebuilt from its particles and
+/// the new parcels (the particles carry the state it keeps). Runs until the corner has moved a
+/// quarter of H or `until` s of wetting have passed.
+Wetting wet_cut(double rate, bool cohesion_loss, double until) {
+  const double H = 0.75 * analytic::rankine_critical_height(cut_cohesion, 30.0, cut_density, 9.81);
+  const double dx = cut_cell / 2.0, interval = 0.05, chunk = 0.01;
+  Params<2> p = cut_params(30.0);
+  const Particles<2> start = cut_particles(H);
+  const std::size_t corner = start.size() - 1;
+  std::optional<MpmSolver<2>> solver(std::in_place, p, start);
+  while (solver->time() < 0.3 - 1e-9) solver->advance(chunk);
+  Wetting w;
+  w.moved_dry = moved(*solver, start, corner, H);
+  p.drag = drag_per_volume(p.porosity, 1000.0, 9.81, 0.05);
+  p.cfl = 0.2;
+  p.wet_cohesion_loss = cohesion_loss;
+  const long chunks = std::lround(until / chunk), per_interval = std::lround(interval / chunk);
+  for (long k = 0; k < chunks && w.fall_time < 0.0; ++k) {
+    if (k % per_interval == 0) {
+      Particles<2> ps = solver->particles();
+      const std::size_t first = ps.size();
+      fill<2>(ps, Vec<2>(0.0, H), Vec<2>(cut_width - 2.0 * cut_cell, H + dx), dx, 1000.0, Phase::Water);
+      for (std::size_t i = first; i < ps.size(); ++i) {
+        ps.m[i] *= rate * interval / dx;
+        ps.V0[i] *= rate * interval / dx;
+      }
+      solver.emplace(p, ps);
+    }
+    solver->advance(chunk);
+    w.moved = moved(*solver, start, corner, H);
+    if (w.moved > 0.25) w.fall_time = static_cast<double>(k + 1) * chunk;
+  }
+  for (std::size_t i = 0; i < start.size(); ++i) w.saturation += solver->particles().saturation[i] / start.size();
+  return w;
+}
+
+// [Tampubolon 2017: cohesion c(φ)] [Rankine: critical height] Seepage brings a standing cut down: the
+// cut at 0.75 H_c stands dry (corner moved under 1 % of H), then water is supplied on its top at
+// 0.02 m/s and seeps in (wet_cut); the saturation rises, c0 (1 − s) falls and the cut falls (the
+// corner moves a quarter of H) within 2 s. Its twin whose cohesion stays c0 under the same water has
+// moved less than 1 % of H by then: the water's weight and drag alone do not bring it down. A faster
+// inflow, 0.04 m/s, brings it down sooner (the method references: time to collapse decreasing
+// with the inflow rate).
+BOOST_AUTO_TEST_CASE(seeping_water_brings_a_standing_cut_down_and_faster_inflow_sooner) {
+  const Wetting slow = wet_cut(0.02, true, 2.0);
+  const Wetting twin = wet_cut(0.02, false, slow.fall_time > 0.0 ? slow.fall_time : 2.0);
+  const Wetting fast = wet_cut(0.04, true, 2.0);
+  BOOST_TEST_MESSAGE("wet cut: dry corner moved " << slow.moved_dry << " H; inflow 0.02 m/s: fell after "
+                                                  << slow.fall_time << " s (mean saturation " << slow.saturation
+                                                  << "), twin with c0 kept: moved " << twin.moved << " H (saturation "
+                                                  << twin.saturation << "); inflow 0.04 m/s: fell after "
+                                                  << fast.fall_time << " s (saturation " << fast.saturation << ")");
+  BOOST_TEST(slow.moved_dry < 0.01);
+  BOOST_TEST(slow.fall_time > 0.0);
+  BOOST_TEST(twin.moved < 0.01);
+  BOOST_TEST(fast.fall_time > 0.0);
+  BOOST_TEST(fast.fall_time < slow.fall_time);
 }
 
 // Per-node gathers and per-particle scatters: a sand bed with water over part of it (the exchange
