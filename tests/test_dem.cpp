@@ -158,6 +158,32 @@ BOOST_AUTO_TEST_SUITE(dem)
 // [Rungjiratananon 2008: DEM normal force]: a sphere launched at a floor rebounds with the
 // restitution of the damped oscillator and stays in contact for its half period, dry (ζ = 0.2) and
 // half saturated, where the paper's wetness raises the dashpot by 1 + s and the water adds its mass.
+// The contact history (dem/grains.hpp): a grain keeping more contacts than the capacity is refused
+// and keeps none; after grow() every grain's contacts are where they were, and the refused ones fit.
+BOOST_AUTO_TEST_CASE(contact_history_grows_without_losing_a_contact) {
+  ContactHistory<3> h;
+  for (int i = 0; i < 3; ++i) h.add_grain();
+  const auto springs = [](std::uint32_t first, std::size_t n) {
+    std::vector<Spring<3>> s(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      s[k].other = first + static_cast<std::uint32_t>(k);
+      s[k].slip = Vec<3>(1.0 * k, 2.0, 3.0);
+    }
+    return s;
+  };
+  const std::vector<Spring<3>> a = springs(10, h.capacity()), b = springs(20, h.capacity() + 3);
+  BOOST_TEST(h.keep(0, a));
+  BOOST_TEST(!h.keep(1, b));
+  BOOST_TEST(h.of(1).empty());
+  h.grow(b.size());
+  BOOST_TEST(h.keep(1, b));
+  BOOST_TEST(h.of(0).size() == a.size());
+  BOOST_TEST(h.of(1).size() == b.size());
+  BOOST_TEST(h.of(2).empty());
+  for (std::size_t k = 0; k < a.size(); ++k) BOOST_TEST((h.of(0)[k].other == a[k].other && h.of(0)[k].slip == a[k].slip));
+  for (std::size_t k = 0; k < b.size(); ++k) BOOST_TEST((h.of(1)[k].other == b[k].other && h.of(1)[k].slip == b[k].slip));
+}
+
 BOOST_AUTO_TEST_CASE(floor_bounce_restitution_and_contact_time) {
   for (const double s : {0.0, 0.5}) {
     const Bounce b = floor_bounce(s);
@@ -284,7 +310,7 @@ BOOST_AUTO_TEST_CASE(rolling_spring_oscillates_and_its_bound_slows_a_spin) {
     g.x[0] = Vec<3>(0.0, R - m * g0 / p.stiffness, 0.0);  // resting on its spring
     g.v[0].setZero();
     g.omega[0] = Vec<3>(0.0, 0.0, omega0);
-    g.springs[0].clear();
+    g.springs.clear(0);
     NeighbourList<3> grid;
     for (double t = 0.0; t < t_end;) {
       const double before = g.omega[0][2];
@@ -423,9 +449,9 @@ BOOST_AUTO_TEST_CASE(dry_pile_angle_of_repose_2d, *boost::unit_test::expected_fa
   BOOST_TEST(angle < 35.0);
   std::size_t pairs = 0, mismatched = 0;
   for (std::size_t i = 0; i < pile.size(); ++i)
-    for (const Spring<2>& s : pile.springs[i]) {
+    for (const Spring<2>& s : pile.springs.of(i)) {
       if (s.other >= pile.size()) continue;  // a wall
-      for (const Spring<2>& back : pile.springs[s.other])
+      for (const Spring<2>& back : pile.springs.of(s.other))
         if (back.other == i) {
           ++pairs;
           if (back.slip != -s.slip || back.roll != -s.roll) ++mismatched;

@@ -47,7 +47,7 @@ bool may_touch(const Grains<D>& g, std::size_t i, const Plane<D>& wall) {
 /// starts at `next`, just after the last one found, and wraps around: one comparison per contact
 /// instead of a scan of all of them.
 template <int D>
-Spring<D> previous_spring(const std::vector<Spring<D>>& springs, std::uint32_t key, std::size_t& next) {
+Spring<D> previous_spring(std::span<const Spring<D>> springs, std::uint32_t key, std::size_t& next) {
   const std::size_t n = springs.size();
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t at = (next + k) % n;
@@ -59,6 +59,16 @@ Spring<D> previous_spring(const std::vector<Spring<D>>& springs, std::uint32_t k
   Spring<D> fresh;
   fresh.other = key;
   return fresh;
+}
+
+/// Keeps the contacts of the grains that kept more than the history's capacity, after growing it.
+/// Each grain's contacts go to its own slots, so the order of the list does not matter.
+template <int D>
+void keep_overflow(ContactHistory<D>& history, const std::vector<std::pair<std::size_t, std::vector<Spring<D>>>>& overflow) {
+  std::size_t needed = 0;
+  for (const auto& [i, kept] : overflow) needed = std::max(needed, kept.size());
+  history.grow(needed);
+  for (const auto& [i, kept] : overflow) history.keep(i, kept);
 }
 
 }  // namespace
@@ -133,9 +143,11 @@ template <int D>
 void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, const Vec<D>& gravity,
                   std::span<const Plane<D>> walls, double dt) {
   const auto n = static_cast<std::ptrdiff_t>(g.size());
+  std::vector<std::pair<std::size_t, std::vector<Spring<D>>>> overflow;  // grains that kept more than the capacity
 #pragma omp parallel
   {
-    std::vector<Spring<D>> kept;  // grain i's contacts of this step, written back to g.springs[i]
+    std::vector<Spring<D>> kept;  // grain i's contacts of this step, written back to g.springs
+    std::vector<std::pair<std::size_t, std::vector<Spring<D>>>> my_overflow;
 #pragma omp for schedule(static)
     for (std::ptrdiff_t s = 0; s < n; ++s) {
       const auto i = static_cast<std::size_t>(s);
@@ -144,7 +156,7 @@ void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, c
       kept.clear();
       std::size_t next = 0;
       const auto add = [&](std::uint32_t key, auto&& force_of) {
-        Spring<D> spring = previous_spring(g.springs[i], key, next);
+        Spring<D> spring = previous_spring(g.springs.of(i), key, next);
         const ContactForce<D> c = force_of(spring);
         f += c.force;
         t += c.torque;
@@ -158,9 +170,12 @@ void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, c
           add(wall_key(w), [&](Spring<D>& spring) { return wall_force(g, i, walls[w], p, dt, spring); });
       g.force[i] = f;
       g.torque[i] = t;
-      g.springs[i].assign(kept.begin(), kept.end());
+      if (!g.springs.keep(i, kept)) my_overflow.emplace_back(i, kept);
     }
+#pragma omp critical(dem_contact_overflow)
+    overflow.insert(overflow.end(), my_overflow.begin(), my_overflow.end());
   }
+  keep_overflow(g.springs, overflow);
 }
 
 template <int D>

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/types.hpp"
@@ -47,6 +48,49 @@ struct Spring {
   Spin<D> roll = Spin<D>::Zero();   ///< ψ [rad]
 };
 
+/// The contacts every grain kept of the last step, from its side, in one array: grain i's are the
+/// first count(i) of its `capacity()` slots. One array in grain order, not a vector per grain, so the
+/// contact gather reads them as it walks the grains. A grain that keeps more contacts than the
+/// capacity is told so by keep(); grow() then makes room for all (the same contacts, any threads).
+template <int D>
+class ContactHistory {
+ public:
+  std::size_t size() const { return count_.size(); }
+  std::size_t capacity() const { return capacity_; }
+  /// Grain i's contacts of the last step.
+  std::span<const Spring<D>> of(std::size_t i) const { return {slots_.data() + i * capacity_, count_[i]}; }
+  /// Keeps `kept` as grain i's contacts; false, keeping none, when they exceed the capacity.
+  bool keep(std::size_t i, std::span<const Spring<D>> kept) {
+    if (kept.size() > capacity_) {
+      count_[i] = 0;
+      return false;
+    }
+    std::copy(kept.begin(), kept.end(), slots_.begin() + static_cast<std::ptrdiff_t>(i * capacity_));
+    count_[i] = static_cast<std::uint32_t>(kept.size());
+    return true;
+  }
+  /// Forgets grain i's contacts.
+  void clear(std::size_t i) { count_[i] = 0; }
+  /// Appends a grain without contacts.
+  void add_grain() {
+    count_.push_back(0);
+    slots_.resize(count_.size() * capacity_);
+  }
+  /// Makes room for `needed` contacts per grain, keeping every grain's.
+  void grow(std::size_t needed) {
+    if (needed <= capacity_) return;
+    std::vector<Spring<D>, Eigen::aligned_allocator<Spring<D>>> wider(size() * needed);
+    for (std::size_t i = 0; i < size(); ++i) std::ranges::copy(of(i), wider.begin() + static_cast<std::ptrdiff_t>(i * needed));
+    slots_ = std::move(wider);
+    capacity_ = needed;
+  }
+
+ private:
+  std::vector<Spring<D>, Eigen::aligned_allocator<Spring<D>>> slots_;
+  std::vector<std::uint32_t> count_;
+  std::size_t capacity_ = 8;
+};
+
 /// The key of wall w in Spring::other (grain indices count up from 0, walls down from the top).
 inline std::uint32_t wall_key(std::size_t w) { return 0xffffffffu - static_cast<std::uint32_t>(w); }
 
@@ -59,7 +103,7 @@ struct Grains {
   std::vector<double> radius;     ///< dry radius R [m]
   std::vector<double> dry_mass;   ///< [kg] (2-D: per metre of depth)
   std::vector<double> water;      ///< water held [kg]
-  std::vector<std::vector<Spring<D>>> springs;  ///< each grain's contacts of the last step, from its side
+  ContactHistory<D> springs;      ///< each grain's contacts of the last step, from its side
 
   std::size_t size() const { return x.size(); }
   /// Appends a grain at rest; its dry mass is density times its volume.
@@ -67,7 +111,7 @@ struct Grains {
     x.push_back(at); v.push_back(Vec<D>::Zero()); force.push_back(Vec<D>::Zero());
     omega.push_back(Spin<D>::Zero()); torque.push_back(Spin<D>::Zero());
     radius.push_back(r); dry_mass.push_back(density * volume_of(r)); water.push_back(0.0);
-    springs.emplace_back();
+    springs.add_grain();
     return x.size() - 1;
   }
   static double volume_of(double r) { return D == 3 ? 4.0 / 3.0 * pi * r * r * r : pi * r * r; }
