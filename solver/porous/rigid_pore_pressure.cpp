@@ -1,6 +1,5 @@
 #include "porous/rigid_pore_pressure.hpp"
 
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <functional>
 #include <map>
 
+#include "core/conjugate_gradient.hpp"
 #include "sph/kernels.hpp"
 
 namespace sc {
@@ -92,10 +92,8 @@ void solve_harmonic_pressure(const ParticleSet<D>& ps, const NeighbourGrid<D>& n
   }
   Eigen::SparseMatrix<double> A(unknowns, unknowns);
   A.setFromTriplets(entries.begin(), entries.end());
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
-  cg.setTolerance(kTolerance);
-  cg.compute(A);
-  const Eigen::VectorXd x = cg.solveWithGuess(rhs, guess);
+  Eigen::VectorXd x = guess;
+  conjugate_gradient(A, rhs, x, kTolerance);
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (index[i] >= 0) P[i] = x[index[i]] + head(i);
 }

@@ -28,7 +28,8 @@ enum class PressureRole : std::uint8_t {
 /// and left the wet zone's own P^c (~0.55 k^c at S ≈ 0.997 with α = 0.1) out of the balance.
 /// Discretisation: the SPH Laplacian of Brookshaw (1985), Σ_j w_ij (Φ_j − Φ_i) = 0 with the
 /// symmetric weights w_ij = |∇W_spiky(r_ij, h̄_ij)| / r_ij (equal volumes) (compact: no odd-even mode), solved
-/// by conjugate gradients warm-started from `P` (serial, so bitwise reproducible). A cluster of
+/// by conjugate gradients warm-started from `P` (core/conjugate_gradient.hpp: serial, its sums in
+/// one order for every instruction set, so bitwise reproducible across threads and builds). A cluster of
 /// unknowns with no prescribed neighbour has no defined pressure: a relative regularisation of
 /// 1e-9 on the diagonal sets it to 0.
 /// Hydrostatic pressure of every water particle from the water column above it, ours [I]:
