@@ -10,6 +10,7 @@
 #include "core/checksum.hpp"
 #include "mpm/exchange.hpp"
 #include "mpm/mpm_solver.hpp"
+#include "mpm/svd.hpp"
 #include "reference/analytic/rankine.hpp"
 #include "reference/analytic/terzaghi.hpp"
 
@@ -194,6 +195,43 @@ BOOST_AUTO_TEST_CASE(the_return_mapping_lands_on_the_cone_or_its_apex) {
   BOOST_TEST(tau_tip(1, 1) == c * m.cot_phi, boost::test_tools::tolerance(1e-10));
   // The cone slope of the plane is Mohr-Coulomb's: |σ1 − σ2| = sin φ |σ1 + σ2| on the cone.
   BOOST_TEST(std::abs(tau(0, 0) - tau(1, 1)) == std::sin(pi / 6.0) * -tau.trace(), boost::test_tools::tolerance(1e-10));
+}
+
+/// The Kirchhoff stress of one sand point (E = 3.537e5 Pa, ν = 0.3, the suite's sand) after steady
+/// simple shear: F^E starts isotropically compressed (log strain −0.003 on each axis), then takes
+/// 4000 steps of F^E ← (𝟙 + Δt ∇v) F^E with Δt ∂v_x/∂y = 1e-4 (a shear of 0.4, far beyond the
+/// elastic strain), each followed by the return mapping as MpmSolver::plasticity does it.
+Mat<2> simple_shear_stress(double phi) {
+  const SandModel m = SandModel::from(2, 3.537e5, 0.3, phi, true);
+  Mat<2> Fe = std::exp(-0.003) * Mat<2>::Identity(), step = Mat<2>::Identity();
+  step(0, 1) = 1e-4;
+  double vc = 0.0;
+  for (int k = 0; k < 4000; ++k) {
+    const Svd<2> s = svd<2>(step * Fe);
+    const Projection<2> p = project_drucker_prager<2>(s.sigma.array().log().matrix(), 0.0, vc, m);
+    vc = p.volume_correction;
+    Fe = s.U * Vec<2>(p.eps.array().exp().matrix()).asDiagonal() * s.V.transpose();
+  }
+  return hencky_kirchhoff<2>(Fe, m);
+}
+
+// [Klár 2016: return mapping] [Davis 1968: non-associated flow in simple shear] The return mapping
+// keeps the trace (no dilatancy, ψ = 0), so steady simple shear turns the deviator coaxial with the
+// shearing, τ_xx = τ_yy within 1 %, and the shearing plane carries τ_xy/−τ_yy = sin φ within 1 %
+// (Davis: tan φ* = sin φ cos ψ / (1 − sin φ sin ψ)), not Mohr-Coulomb's tan φ, which the plane cone
+// reaches only on a plane that is not the one shearing. A layer flowing on a slope therefore keeps
+// flowing down to tan θ = sin φ (26.6 deg for φ = 30 deg, 18.9 for 20, 29.8 for 35): the reason the
+// suite's MPM sand piles come to rest below φ (cases/angle_of_repose).
+BOOST_AUTO_TEST_CASE(steady_simple_shear_carries_sin_phi_on_the_shearing_plane) {
+  for (const double phi : {20.0, 30.0, 35.0}) {
+    const Mat<2> tau = simple_shear_stress(phi);
+    const double ratio = tau(0, 1) / -tau(1, 1), s = std::sin(phi * pi / 180.0);
+    BOOST_TEST_MESSAGE("simple shear at phi " << phi << ": tau_xy/-tau_yy " << ratio << " (sin phi " << s
+                                              << ", tan phi " << std::tan(phi * pi / 180.0) << "), tau_xx/tau_yy "
+                                              << tau(0, 0) / tau(1, 1));
+    BOOST_TEST(ratio == s, boost::test_tools::tolerance(0.01));
+    BOOST_TEST(tau(0, 0) / tau(1, 1) == 1.0, boost::test_tools::tolerance(0.01));
+  }
 }
 
 // [Tampubolon 2017: eqs. 26-27] The volume the projection adds on expansion is stored and given
