@@ -148,7 +148,10 @@ void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, c
   {
     std::vector<Spring<D>> kept;  // grain i's contacts of this step, written back to g.springs
     std::vector<std::pair<std::size_t, std::vector<Spring<D>>>> my_overflow;
-#pragma omp for schedule(static)
+    // Dynamic: a settling pile's lower grains have many contacts and its upper ones few, so equal
+    // shares of the grain order are unequal work. Each grain's sums are its own: any schedule
+    // gives the same bits.
+#pragma omp for schedule(dynamic, 256)
     for (std::ptrdiff_t s = 0; s < n; ++s) {
       const auto i = static_cast<std::size_t>(s);
       Vec<D> f = g.mass(i) * gravity;

@@ -36,7 +36,7 @@ class NeighbourList {
     built_at_.assign(x.begin(), x.end());
     const auto n = static_cast<std::ptrdiff_t>(x.size());
     std::vector<std::uint32_t> count(x.size() + 1, 0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)  // grains in dense regions have more neighbours
     for (std::ptrdiff_t s = 0; s < n; ++s) {
       std::uint32_t c = 0;
       visit_near(x, static_cast<std::size_t>(s), reach, [&](std::uint32_t) { ++c; });
@@ -45,7 +45,7 @@ class NeighbourList {
     for (std::size_t i = 0; i < x.size(); ++i) count[i + 1] += count[i];
     start_ = std::move(count);
     near_.resize(start_.back());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 256)  // grains in dense regions have more neighbours
     for (std::ptrdiff_t s = 0; s < n; ++s) {
       std::uint32_t k = start_[static_cast<std::size_t>(s)];
       visit_near(x, static_cast<std::size_t>(s), reach, [&](std::uint32_t j) { near_[k++] = j; });

@@ -86,6 +86,7 @@ boundary f f f
 newton off
 communicate single vel yes
 units si
+processors * * 1
 read_data grains.data
 neighbor {0.1 * dx} bin
 neigh_modify delay 0
