@@ -61,10 +61,14 @@ Spring<D> previous_spring(std::span<const Spring<D>> springs, std::uint32_t key,
   return fresh;
 }
 
-/// Keeps the contacts of the grains that kept more than the history's capacity, after growing it.
-/// Each grain's contacts go to its own slots, so the order of the list does not matter.
+/// The contacts of the grains that kept more than the contact history's capacity this step.
 template <int D>
-void keep_overflow(ContactHistory<D>& history, const std::vector<std::pair<std::size_t, std::vector<Spring<D>>>>& overflow) {
+using Overflow = std::vector<std::pair<std::size_t, std::vector<Spring<D>>>>;
+
+/// Keeps the overflowing grains' contacts, after growing the history. Each grain's contacts go to
+/// its own slots, so the order of the list does not matter.
+template <int D>
+void keep_overflow(ContactHistory<D>& history, const Overflow<D>& overflow) {
   std::size_t needed = 0;
   for (const auto& [i, kept] : overflow) needed = std::max(needed, kept.size());
   history.grow(needed);
@@ -143,11 +147,11 @@ template <int D>
 void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, const Vec<D>& gravity,
                   std::span<const Plane<D>> walls, double dt) {
   const auto n = static_cast<std::ptrdiff_t>(g.size());
-  std::vector<std::pair<std::size_t, std::vector<Spring<D>>>> overflow;  // grains that kept more than the capacity
+  Overflow<D> overflow;
 #pragma omp parallel
   {
     std::vector<Spring<D>> kept;  // grain i's contacts of this step, written back to g.springs
-    std::vector<std::pair<std::size_t, std::vector<Spring<D>>>> my_overflow;
+    Overflow<D> my_overflow;
     // Dynamic: a settling pile's lower grains have many contacts and its upper ones few, so equal
     // shares of the grain order are unequal work. Each grain's sums are its own: any schedule
     // gives the same bits.
