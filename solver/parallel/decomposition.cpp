@@ -96,12 +96,13 @@ void Decomposition<D>::rebalance(const ParticleSet<D>& ps, bool global) {
   for (int d = 1; d < D; ++d)
     if (bounds_.hi[d] - bounds_.lo[d] > bounds_.hi[axis] - bounds_.lo[axis]) axis = d;
   std::vector<std::uint64_t> layer(static_cast<std::size_t>(grid_.dims[axis]), 0);
-  for (std::size_t i = 0; i < ps.size(); ++i) ++layer[grid_.coord(ps.x[i], axis)];
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (!ps.inert(i)) ++layer[grid_.coord(ps.x[i], axis)];
   if (!global) comm_.sum(layer);
   const std::uint64_t total = std::accumulate(layer.begin(), layer.end(), std::uint64_t{0});
   const auto ranks = static_cast<std::uint64_t>(comm_.size());
   // Border r (between ranks r and r + 1) at the first layer before which at least (r + 1)/N of
-  // the particles lie.
+  // the moving particles lie.
   std::vector<std::int64_t> cut(ranks - 1, kNoBorder);
   std::uint64_t before = 0;
   std::size_t r = 0;
@@ -114,18 +115,18 @@ void Decomposition<D>::rebalance(const ParticleSet<D>& ps, bool global) {
 }
 
 template <int D>
-std::vector<std::size_t> Decomposition<D>::apply(ParticleSet<D>& ps, const std::vector<std::string>& received) {
+void Decomposition<D>::append(ParticleSet<D>& ps, const std::vector<std::string>& received) {
   ParticleSet<D>& add = ps.additions();
   for (const std::string& bytes : received) unpack(bytes, add, key_);
-  ps.compact();
-  const std::vector<std::size_t> order = key_order(key_);
-  if (!std::is_sorted(key_.begin(), key_.end())) {
-    ps.permute(order);
-    std::vector<std::uint64_t> sorted(key_.size());
-    for (std::size_t k = 0; k < order.size(); ++k) sorted[k] = key_[order[k]];
-    key_.swap(sorted);
-  }
-  return order;
+  ps.compact();  // nothing queued for removal: appends
+}
+
+template <int D>
+void Decomposition<D>::reorder(ParticleSet<D>& ps, const std::vector<std::size_t>& order) {
+  ps.permute(order);
+  std::vector<std::uint64_t> key(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) key[k] = key_[order[k]];
+  key_.swap(key);
 }
 
 template <int D>
@@ -148,23 +149,28 @@ void Decomposition<D>::begin_step(ParticleSet<D>& ps, long step, bool sort) {
   find_grid(ps, false);
   if (step % kRebalanceEvery == 0) rebalance(ps, false);
   std::vector<std::vector<std::uint32_t>> leaving(static_cast<std::size_t>(comm_.size()));
-  std::vector<std::uint64_t> kept;
-  kept.reserve(ps.size());
+  std::vector<std::size_t> staying;
+  staying.reserve(ps.size());
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const int r = owner(grid_.coord(ps.x[i], axis_));
-    if (r == comm_.rank()) {
-      kept.push_back(key_[i]);
-      continue;
-    }
-    leaving[r].push_back(static_cast<std::uint32_t>(i));
-    ps.queue_remove(i);
-    ++account_.migrated;
+    if (r == comm_.rank()) staying.push_back(i);
+    else leaving[r].push_back(static_cast<std::uint32_t>(i));
   }
   std::vector<std::string> send(leaving.size());
   for (std::size_t r = 0; r < leaving.size(); ++r)
     if (!leaving[r].empty()) send[r] = pack(ps, leaving[r], key_);
-  key_.swap(kept);
-  apply(ps, comm_.exchange(send));
+  account_.migrated += static_cast<long>(ps.size() - staying.size());
+  const std::size_t before = ps.size();
+  append(ps, comm_.exchange(send));
+  if (staying.size() < before || ps.size() > before) {
+    // One reorder: the staying particles (in key order) merged by key with the arrivals.
+    std::vector<std::size_t> arrived(ps.size() - before), order(staying.size() + arrived.size());
+    std::iota(arrived.begin(), arrived.end(), before);
+    const auto by_key = [&](std::size_t a, std::size_t b) { return key_[a] < key_[b]; };
+    std::sort(arrived.begin(), arrived.end(), by_key);
+    std::merge(staying.begin(), staying.end(), arrived.begin(), arrived.end(), order.begin(), by_key);
+    reorder(ps, order);
+  }
   if (sort) sort_keys(ps);
   ++account_.steps;
 }
@@ -182,15 +188,15 @@ void Decomposition<D>::sort_keys(ParticleSet<D>& ps) {
   std::exclusive_scan(start.begin(), start.end(), start.begin(), std::uint64_t{0});
   // A slot's particles all lie on this rank (a slab is whole cell layers), here in old key order.
   for (std::size_t i = 0; i < ps.size(); ++i) key_[i] = start[slot(i)]++;
-  apply(ps, {});
+  reorder(ps, key_order(key_));
 }
 
 template <int D>
 void Decomposition<D>::add_halo(ParticleSet<D>& ps) {
   const auto ranks = static_cast<std::size_t>(comm_.size());
-  const std::size_t own = ps.size();
+  own_ = ps.size();
   send_.assign(ranks, {});
-  for (std::size_t i = 0; i < own; ++i) {
+  for (std::size_t i = 0; i < own_; ++i) {
     const std::int64_t c = grid_.coord(ps.x[i], axis_);
     for (std::size_t r = 0; r < ranks; ++r) {
       if (static_cast<int>(r) == comm_.rank()) continue;
@@ -203,35 +209,25 @@ void Decomposition<D>::add_halo(ParticleSet<D>& ps) {
   for (std::size_t r = 0; r < ranks; ++r)
     if (!send_[r].empty()) send[r] = pack(ps, send_[r], key_);
   const std::vector<std::string> received = comm_.exchange(send);
-  std::vector<std::size_t> first(ranks + 1, own);  // index of each source's first halo particle before the sort
+  // Appended after this rank's own particles, each source's in its key order: a cell's particles
+  // all come from one rank, so every cell keeps the one-process order (NeighbourGrid orders a
+  // cell's particles by index).
+  append(ps, received);
+  recv_.assign(ranks, {});
+  std::size_t at = own_;
   for (std::size_t r = 0; r < ranks; ++r) {
     std::uint64_t n = 0;
     if (!received[r].empty()) std::memcpy(&n, received[r].data(), sizeof n);
-    first[r + 1] = first[r] + n;
+    for (std::uint64_t k = 0; k < n; ++k) recv_[r].push_back(static_cast<std::uint32_t>(at++));
   }
-  const std::vector<std::size_t> order = apply(ps, received);
-  std::vector<std::uint32_t> at(order.size());
-  for (std::size_t k = 0; k < order.size(); ++k) at[order[k]] = static_cast<std::uint32_t>(k);
-  for (auto& list : send_)
-    for (auto& i : list) i = at[i];
-  recv_.assign(ranks, {});
-  for (std::size_t r = 0; r < ranks; ++r)
-    for (std::size_t i = first[r]; i < first[r + 1]; ++i) recv_[r].push_back(at[i]);
-  halo_.assign(ps.size(), 0);
-  for (std::size_t i = own; i < ps.size(); ++i) halo_[at[i]] = 1;
-  account_.halo_particles += static_cast<long>(ps.size() - own);
+  account_.halo_particles += static_cast<long>(ps.size() - own_);
 }
 
 template <int D>
 void Decomposition<D>::drop_halo(ParticleSet<D>& ps) {
-  std::vector<std::uint64_t> kept;
-  kept.reserve(ps.size());
-  for (std::size_t i = 0; i < ps.size(); ++i)
-    if (is_halo(i)) ps.queue_remove(i);
-    else kept.push_back(key_[i]);
-  key_.swap(kept);
-  ps.compact();
-  halo_.clear();
+  ps.truncate(own_);
+  key_.resize(own_);
+  own_ = kNoHalo;
   send_.clear();
   recv_.clear();
 }
@@ -242,8 +238,7 @@ ParticleSet<D> Decomposition<D>::gather(const ParticleSet<D>& owned) const {
   ParticleSet<D> out;
   std::vector<std::uint64_t> keys;
   for (const std::string& bytes : all) unpack(bytes, out, keys);
-  std::vector<std::size_t> order = key_order(keys);
-  out.permute(order);
+  out.permute(key_order(keys));
   out.set_next_id(owned.next_id());
   return out;
 }

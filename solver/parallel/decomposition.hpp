@@ -4,13 +4,14 @@
 //
 // Results do not depend on the number of ranks, bitwise. A particle's sums run over its neighbour
 // list, which the grid orders by cell, then (inert last) by the particles' order in storage; so
-// every rank keeps its particles (its own and its halo) in the order the one-process run stores
-// them. Each particle carries that position as its key: the scene's index at the start, and at each
-// storage sort of the simulator (Simulator::kSortEvery) its place in the one-process sort — its
+// every cell's particles must lie in storage in the order the one-process run stores them. Each
+// particle carries its position in that storage as its key: the scene's index at the start, and at
+// each storage sort of the simulator (Simulator::kSortEvery) its place in the one-process sort — its
 // slot (inert, cell) first, then its old key — computed from the slots' counts summed over the
-// ranks. A slab is a whole number of cell layers, so a cell's particles are all on one rank and the
-// order within a slot is that rank's. Every collective is exact: minima and maxima (the grid's
-// bounds, the step size), integer sums (counts), and copies of bytes.
+// ranks. A slab is a whole number of cell layers, so a cell's particles all belong to one rank:
+// every rank keeps its own particles in key order and appends the halo after them, each source
+// rank's in key order. Every collective is exact: minima and maxima (the grid's bounds, the step
+// size), integer sums (counts), and copies of bytes.
 #pragma once
 #include <cstdint>
 #include <cstring>
@@ -27,7 +28,7 @@ namespace sc {
 /// What the decomposition did, summed over the ranks.
 struct DecompositionAccount {
   int ranks = 1;
-  long rebalances = 0;      ///< times the slabs' borders moved (every Decomposition::kRebalanceEvery steps at most)
+  long rebalances = 0;      ///< slab choices that moved a border (every Decomposition::kRebalanceEvery steps at most; the first included)
   long migrated = 0;        ///< particles that moved to another rank's slab
   long halo_particles = 0;  ///< halo copies received, over all steps
   long steps = 0;
@@ -50,8 +51,8 @@ class Decomposition {
   /// in another rank's slab, and, when `sort` (a storage sort of the simulator), the new keys of
   /// the one-process sort with `ps` put in their order.
   void begin_step(ParticleSet<D>& ps, long step, bool sort);
-  /// Adds the halo to `ps`: a copy of every other rank's particles in the cell layers next to this
-  /// rank's slab, in key order among this rank's own.
+  /// Adds the halo to `ps`, after this rank's own particles: a copy of every other rank's particles
+  /// in the cell layers next to this rank's slab, each rank's in key order.
   void add_halo(ParticleSet<D>& ps);
   /// Removes the halo from `ps` again.
   void drop_halo(ParticleSet<D>& ps);
@@ -60,7 +61,8 @@ class Decomposition {
   template <class Field>
   void refresh(Field& field) const;
 
-  bool is_halo(std::size_t i) const { return i < halo_.size() && halo_[i]; }
+  /// Whether particle i of `ps` is a halo copy (the halo follows this rank's own particles).
+  bool is_halo(std::size_t i) const { return i >= own_; }
   /// Bounds of the whole scene at the start of the step (all ranks' particles).
   const GridBounds<D>& bounds() const { return bounds_; }
   /// The key (place in the one-process storage order) of particle i of `ps`.
@@ -75,14 +77,18 @@ class Decomposition {
   int owner(std::int64_t c) const;
   /// Global bounds and grid of `ps`'s particles; `global`: ps is the whole scene on every rank.
   void find_grid(const ParticleSet<D>& ps, bool global);
-  /// New slabs along the longest axis of the bounds, each rank's share of the particles `ps`
-  /// counted per cell layer (summed over the ranks unless `global`).
+  /// New slabs along the longest axis of the bounds, each with an equal share of the moving
+  /// particles of `ps` counted per cell layer (summed over the ranks unless `global`). The inert
+  /// walls are not counted: their cells are binned once and they take part in no sum of their own
+  /// away from the moving particles, so the moving particles are the work.
   void rebalance(const ParticleSet<D>& ps, bool global);
   /// The one-process storage sort's keys for `ps`, then ps in their order.
   void sort_keys(ParticleSet<D>& ps);
-  /// Applies ps's queued removals and the particles `received` (packed, each with its key) to ps
-  /// and the keys, then puts ps in key order. Returns the order applied (new index k holds old k).
-  std::vector<std::size_t> apply(ParticleSet<D>& ps, const std::vector<std::string>& received);
+  /// Appends the particles `received` (packed, each with its key) to ps and the keys.
+  void append(ParticleSet<D>& ps, const std::vector<std::string>& received);
+  /// Puts ps and the keys in `order` (new index k holds old order[k]; particles left out are dropped).
+  void reorder(ParticleSet<D>& ps, const std::vector<std::size_t>& order);
+  static constexpr std::size_t kNoHalo = SIZE_MAX;
 
   Comm comm_;
   GridBounds<D> bounds_ = GridBounds<D>::empty();
@@ -90,7 +96,7 @@ class Decomposition {
   int axis_ = 0;
   std::vector<std::int64_t> cut_;  // rank r's slab: axis cells [cut_[r - 1], cut_[r]) (r = 0: from −∞; last: to +∞)
   std::vector<std::uint64_t> key_;
-  std::vector<std::uint8_t> halo_;
+  std::size_t own_ = kNoHalo;  // during a step: this rank's own particles, the halo after them
   std::vector<std::vector<std::uint32_t>> send_, recv_;  // per rank: indices of ps sent to it / received from it in the halo
   DecompositionAccount account_;
 };
