@@ -148,6 +148,26 @@ BOOST_AUTO_TEST_CASE(checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_c
   fs::remove_all(fs::path(file).parent_path());
 }
 
+// A run that blows up over 2 ranks stops as the one process does: exit code 3, the same diagnostic
+// (step, time, the particle's one-process index, its phase, the field) and the same last good state.
+BOOST_AUTO_TEST_CASE(a_blow_up_over_2_ranks_is_reported_as_in_one_process) {
+  if (!have_mpi()) return;
+  const std::string file = std::string(SANDCASTLE_SOURCE_DIR) + "/tests/reliability/unstable_step.json";
+  const std::string root = test::fresh_path("decomposed_blowup");
+  std::vector<std::string> diagnostics, last_good;
+  for (const int ranks : {1, 2}) {
+    const std::string out = root + "/n" + std::to_string(ranks);
+    const test::ProcessResult r = sandcastle(ranks, {"run", file, "--out", out});
+    BOOST_TEST(r.exit_code == 3);
+    diagnostics.push_back(match(r.err, "(blow-up at step [^;]*);"));
+    last_good.push_back(test::read_text(out + "/last_good.vtu"));
+  }
+  BOOST_TEST(!diagnostics[0].empty());
+  BOOST_TEST(diagnostics[1] == diagnostics[0]);
+  BOOST_TEST((last_good[1] == last_good[0]), "last_good.vtu differs from the one-process run's");
+  fs::remove_all(root);
+}
+
 // `bench` of a decomposed scene: rank 0 writes bench.json with the one-process checksum, the ranks,
 // the halo stage and its share of the step.
 BOOST_AUTO_TEST_CASE(bench_over_2_ranks_reports_the_halo_share_and_the_one_process_checksum) {
