@@ -305,24 +305,26 @@ std::optional<StateError> Simulator<D>::state_error(std::size_t i) const {
 }
 
 template <int D>
-void Simulator<D>::check_state() const {
+std::size_t Simulator<D>::first_error() const {
   const auto n = static_cast<std::int64_t>(ps_.size());
   std::int64_t first = n;  // the lowest offending index, whatever the number of threads
 #pragma omp parallel for schedule(static) reduction(min : first)
   for (std::int64_t i = 0; i < n; ++i)
     if (i < first && state_error(i)) first = i;
-  if (first == n) return;
+  return static_cast<std::size_t>(first);
+}
+
+template <int D>
+void Simulator<D>::check_state() const {
+  const std::size_t first = first_error();
+  if (first == ps_.size()) return;
   const StateError e = *state_error(first);
   throw BlowUpError(steps_ + 1, time_, static_cast<long>(first), std::string(phase_name(ps_.phase_of(first))), e.field, e.what);
 }
 
 template <int D>
 void Simulator<D>::check_state_over_ranks() const {
-  const auto n = static_cast<std::int64_t>(ps_.size());
-  std::int64_t first = n;
-#pragma omp parallel for schedule(static) reduction(min : first)
-  for (std::int64_t i = 0; i < n; ++i)
-    if (i < first && state_error(i)) first = i;
+  const std::size_t n = ps_.size(), first = first_error();
   // Keys follow the index on each rank, and a key is the particle's index in the one-process run.
   std::array<std::uint64_t, 1> key = {first < n ? dd_->key(first) : UINT64_MAX};
   dd_->comm().min(key);

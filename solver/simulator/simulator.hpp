@@ -112,6 +112,8 @@ class Simulator {
   void check_state() const;
   /// check_state over the ranks of the decomposition.
   void check_state_over_ranks() const;
+  /// The lowest index of an offending particle (size() if none).
+  std::size_t first_error() const;
   /// Overwrites the halo's values of `field` with their owners' (decomposed runs; else nothing).
   template <class Field>
   void refresh_halo(Field& field);
