@@ -16,7 +16,7 @@ namespace {
 /// Layer of each solver folder, bottom (0) to top; folders of one layer may include each other
 /// only where docs/architecture.md says so (physics topics build on the ones listed before them).
 const std::map<std::string, int> kLayer = {
-    {"core", 0},  {"io", 1},      {"geometry", 2}, {"neighbours", 3}, {"sph", 4},       {"water", 5},
+    {"core", 0},  {"io", 1},      {"geometry", 2}, {"neighbours", 3}, {"parallel", 4}, {"sph", 4},       {"water", 5},
     {"porous", 5}, {"sand", 6},   {"adaptive", 6}, {"boundary", 6},   {"case", 7},      {"scene", 8},
     {"method", 9}, {"simulator", 10}, {"flip", 10}, {"dem", 10}, {"mpm", 10}, {"surface", 4}};
 const std::set<std::string> kMethods = {"simulator", "flip", "dem", "mpm"};

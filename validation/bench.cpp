@@ -15,6 +15,8 @@
 #include "io/atomic_file.hpp"
 #include "method/registry.hpp"
 #include "observer.hpp"
+#include "parallel/comm.hpp"
+#include "simulator/sph_probe.hpp"
 #include "probe.hpp"
 #include "progress.hpp"
 #include "runner.hpp"
@@ -79,11 +81,11 @@ double status_bytes(const std::string& key) {
   return 0.0;
 }
 
-/// The cost of one particle, in core time: the median step's milliseconds times the threads over the
+/// The cost of one particle, in core time: the median step's milliseconds times the cores (threads times ranks) over the
 /// particles (walls included), as microseconds per particle per case step; for a method that takes
 /// `own_steps` steps of its own over the `steps` case steps (DEM, MPM), also per step of its own.
-void add_per_particle_times(json& entry, double median_ms, double threads, std::optional<long> own_steps, long steps) {
-  const double per_step = 1e3 * median_ms * threads / entry["particles"]["total"].get<double>();
+void add_per_particle_times(json& entry, double median_ms, double cores, std::optional<long> own_steps, long steps) {
+  const double per_step = 1e3 * median_ms * cores / entry["particles"]["total"].get<double>();
   entry["us_per_particle_step_per_core"] = per_step;
   if (!own_steps || *own_steps <= 0) return;
   const double own_per_step = static_cast<double>(*own_steps) / static_cast<double>(steps);
@@ -91,16 +93,29 @@ void add_per_particle_times(json& entry, double median_ms, double threads, std::
   entry["us_per_particle_own_step_per_core"] = per_step / own_per_step;
 }
 
-/// Runs `steps` steps of one scene, timing each, and returns its bench.json entry.
+/// A scene decomposed over MPI ranks: the ranks, the halo's share of the step (the exchanges
+/// between the ranks, stage "halo", over the mean step) and what the decomposition did.
+void add_decomposition(json& entry, const std::optional<DecompositionAccount>& a) {
+  if (!a) return;
+  entry["ranks"] = a->ranks;
+  entry["halo_share"] = entry["stage_ms_per_step"]["halo"].get<double>() / entry["ms_per_step"]["mean"].get<double>();
+  entry["decomposition"] = {{"rebalances", a->rebalances},
+                            {"migrated", a->migrated},
+                            {"halo_particles_per_step", static_cast<double>(a->halo_particles) / static_cast<double>(a->steps)}};
+}
+
+/// Runs `steps` steps of one scene, timing each, and returns its bench.json entry; `decompose`:
+/// the scene decomposed over the MPI ranks (every rank runs it; rank 0's times are reported).
 template <int D>
-json bench_scene(const CaseSpec& spec, double dx, long steps) {
+json bench_scene(const CaseSpec& spec, double dx, long steps, bool decompose) {
   const bool peak_known = restart_peak_resident();
   const double resident_before = status_bytes("VmRSS");  // code, libraries, what earlier scenes left
-  const std::unique_ptr<Method<D>> method = make_method<D>(spec, dx);
+  const std::unique_ptr<Method<D>> method = make_method<D>(spec, dx, decompose);
   Method<D>& sim = *method;
   json entry{{"scene", spec.name}, {"method", spec.method}, {"spacing", dx}, {"particles", count_phases(sim.particles())}};
   sim.reset_stage_times();
-  const auto threads = static_cast<double>(omp_get_max_threads());
+  const int ranks = Comm::world().size();
+  const auto cores = static_cast<double>(omp_get_max_threads()) * (decompose ? ranks : 1);
   std::vector<double> ms;
   Progress progress(spec.name, steps * spec.dt_max);
   const double t_start = sim.time();
@@ -130,7 +145,8 @@ json bench_scene(const CaseSpec& spec, double dx, long steps) {
   entry["ms_per_step"] = {{"median", quantile(ms, 0.5)}, {"q1", quantile(ms, 0.25)}, {"q3", quantile(ms, 0.75)},
                           {"min", quantile(ms, 0.0)},    {"max", quantile(ms, 1.0)},  {"mean", 1e3 * total / steps}};
   entry["stage_ms_per_step"] = stages;
-  add_per_particle_times(entry, quantile(ms, 0.5), threads, sim.own_steps(), steps);
+  add_per_particle_times(entry, quantile(ms, 0.5), cores, sim.own_steps(), steps);
+  if (decompose) add_decomposition(entry, require_sph(sim, "the decomposition's account").decomposition());
   entry["checksum"] = sim.checksum();
   entry["final_particles"] = count_phases(sim.particles());
   if (peak_known) {
@@ -143,9 +159,10 @@ json bench_scene(const CaseSpec& spec, double dx, long steps) {
   return entry;
 }
 
-json bench_any(const CaseSpec& spec, double dx, long steps) {
+json bench_any(const CaseSpec& spec, double dx, long steps, bool decompose = false) {
   check_method(spec);
-  return spec.dimension == 2 ? bench_scene<2>(spec, dx, steps) : bench_scene<3>(spec, dx, steps);
+  if (decompose) check_decomposable(spec);
+  return spec.dimension == 2 ? bench_scene<2>(spec, dx, steps, decompose) : bench_scene<3>(spec, dx, steps, decompose);
 }
 
 /// What adaptivity buys: the same scene without its "adaptive" section, timed over the same
@@ -231,6 +248,7 @@ int bench(const BenchOptions& opt) {
     return kSuccess;
   }
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  const bool decompose = Comm::world().size() > 1, writer = Comm::world().rank() == 0;
   if (opt.surface) {
     const json document = run_surface_bench();
     fs::create_directories(opt.out_dir);
@@ -240,7 +258,7 @@ int bench(const BenchOptions& opt) {
   }
   const std::string cases_dir = opt.cases_dir.empty() ? data_path("cases") : opt.cases_dir;
   const std::vector<std::string>& scenes = opt.scenes.empty() ? default_scenes : opt.scenes;
-  fs::create_directories(opt.out_dir);
+  if (writer) fs::create_directories(opt.out_dir);
   json entries = json::array();
   int exit_code = kSuccess;
   for (const std::string& name : scenes) {
@@ -251,7 +269,7 @@ int bench(const BenchOptions& opt) {
     check_particle_count(spec, dx, opt.max_particles, "/tiers/full/spacings");
     const long steps = opt.steps > 0 ? opt.steps : (name.rfind("bench_water", 0) == 0 ? 200 : 100);
     try {
-      json entry = bench_any(spec, dx, steps);
+      json entry = bench_any(spec, dx, steps, decompose);
       entry["threads"] = omp_get_max_threads();
       add_thesis_comparison(entry);
       add_paper_comparison(entry);
@@ -262,10 +280,11 @@ int bench(const BenchOptions& opt) {
       entries.push_back({{"scene", name}, {"error", e.what()}});
       exit_code = kBlowUp;
     }
-    write_file_atomic(opt.out_dir + "/bench.json",
-                      json{{"compiler", SANDCASTLE_COMPILER}, {"scenes", entries}}.dump(2) + "\n");
+    if (writer)
+      write_file_atomic(opt.out_dir + "/bench.json",
+                        json{{"compiler", SANDCASTLE_COMPILER}, {"scenes", entries}}.dump(2) + "\n");
   }
-  print_table(entries);
+  if (writer) print_table(entries);
   return exit_code;
 }
 

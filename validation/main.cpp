@@ -44,7 +44,9 @@ int run_command(const std::string& case_file, const std::string& out_dir, const 
   settings.label = spec.name;
   settings.checkpoint_every = checkpoint_every;
   settings.resume_from = resume_from;
+  settings.decompose = sc::sweep_ranks() > 1;
   const sc::RunResult r = sc::run_simulation(spec, dx, settings);
+  if (sc::sweep_rank() != 0) return r.exit_code;  // rank 0 reports
   if (r.status == "error") {
     std::cerr << "error: " << r.message << "\n";
     return r.exit_code;
@@ -52,6 +54,9 @@ int run_command(const std::string& case_file, const std::string& out_dir, const 
   sc::write_series_file(out_dir + "/series.json", spec.name, r.observed);
   std::cout << spec.name << ": " << r.particles << " particles, " << r.steps << " steps, " << r.wall_seconds
             << " s, checksum " << r.checksum << "\n";
+  if (const auto& a = r.decomposition)
+    std::cout << "  decomposed over " << a->ranks << " ranks: " << a->rebalances << " rebalances, " << a->migrated
+              << " particles migrated, " << a->halo_particles << " halo particles received over " << a->steps << " steps\n";
   for (const auto& [name, m] : r.observed.metrics)
     std::cout << "  " << name << " = " << m.value << "  limit " << m.limit.to_json().dump() << (m.pass() ? "" : "  FAIL")
               << "\n";
@@ -81,12 +86,13 @@ void add_methods_option(CLI::App* app, std::vector<std::string>& methods) {
 
 }  // namespace
 
-/// Only `validate` spreads over MPI ranks; any other command under `mpirun -n N` (N > 1) would run
-/// N copies writing the same files, so it stops before anything is written. True when stopped.
-bool sweep_ranks_guard(bool validating) {
-  if (validating || sc::sweep_ranks() == 1) return false;
+/// `validate` spreads its cases over MPI ranks, `run` and `bench` decompose one scene over them; any
+/// other command under `mpirun -n N` (N > 1) would run N copies writing the same files, so it stops
+/// before anything is written. True when stopped.
+bool sweep_ranks_guard(bool over_ranks) {
+  if (over_ranks || sc::sweep_ranks() == 1) return false;
   if (sc::sweep_rank() == 0)
-    std::cerr << "error: only `sandcastle validate` runs over several MPI ranks (this is rank 0 of "
+    std::cerr << "error: only `sandcastle validate`, `run` and `bench` run over several MPI ranks (this is rank 0 of "
               << sc::sweep_ranks() << "); run the other commands as one process\n";
   return true;
 }
@@ -218,7 +224,8 @@ int main(int argc, char** argv) {
   try {
     sc::set_data_root(root);
     if (bopt.out_dir.empty()) bopt.out_dir = sc::data_path("reports/baseline-run");
-    if (sweep_ranks_guard(val->parsed())) return sc::kBadInput;
+    if (sweep_ranks_guard(val->parsed() || run->parsed() || (bench->parsed() && !benchopt.probe && !benchopt.surface)))
+      return sc::kBadInput;
     if (*run)
       return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from, run_method, max_particles,
                          run_surfaces);
@@ -228,7 +235,7 @@ int main(int argc, char** argv) {
     if (*rnd) return sc::render::render_run(ropt);
     return sc::validate(vopt);
   } catch (const sc::InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    if (val->parsed() || sc::sweep_rank() == 0) std::cerr << "error: " << e.what() << "\n";  // one scene: every rank says the same
     return sc::kBadInput;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";

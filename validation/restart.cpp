@@ -33,10 +33,11 @@ FrameLog read_frame_log(const json& run, const std::string& file) {
 }  // namespace
 
 template <int D>
-std::unique_ptr<Method<D>> start_method(const CaseSpec& spec, double dx, const std::string& resume_from, FrameLog& log) {
-  if (resume_from.empty()) return make_method<D>(spec, dx);
+std::unique_ptr<Method<D>> start_method(const CaseSpec& spec, double dx, const std::string& resume_from, FrameLog& log,
+                                        bool decompose) {
+  if (resume_from.empty()) return make_method<D>(spec, dx, decompose);
   json run;
-  std::unique_ptr<Method<D>> method = resume_method<D>(spec, dx, resume_from, run);
+  std::unique_ptr<Method<D>> method = resume_method<D>(spec, dx, resume_from, run, decompose);
   log = read_frame_log(run, resume_from);
   return method;
 }
@@ -52,8 +53,8 @@ std::string checkpoint_name(long step) {
   return name;
 }
 
-template std::unique_ptr<Method<2>> start_method<2>(const CaseSpec&, double, const std::string&, FrameLog&);
-template std::unique_ptr<Method<3>> start_method<3>(const CaseSpec&, double, const std::string&, FrameLog&);
+template std::unique_ptr<Method<2>> start_method<2>(const CaseSpec&, double, const std::string&, FrameLog&, bool);
+template std::unique_ptr<Method<3>> start_method<3>(const CaseSpec&, double, const std::string&, FrameLog&, bool);
 template void write_run_checkpoint<2>(const std::string&, const Method<2>&, const FrameLog&);
 template void write_run_checkpoint<3>(const std::string&, const Method<3>&, const FrameLog&);
 

@@ -21,9 +21,11 @@ struct FrameLog {
 /// The method a run starts with, built by the registry (method/registry.hpp): the case's scene at
 /// t = 0 or, when `resume_from` names a checkpoint, its state and frame log. The checkpoint must
 /// come from the same case (parameters hash), dimension and spacing; otherwise, or if it is
-/// unreadable, throws InputError.
+/// unreadable, throws InputError. `decompose`: the scene is decomposed over the MPI ranks
+/// (make_method), whatever number of ranks wrote the checkpoint.
 template <int D>
-std::unique_ptr<Method<D>> start_method(const CaseSpec& spec, double dx, const std::string& resume_from, FrameLog& log);
+std::unique_ptr<Method<D>> start_method(const CaseSpec& spec, double dx, const std::string& resume_from, FrameLog& log,
+                                        bool decompose = false);
 
 /// Writes the checkpoint of `method` and its frame log to `path` (atomically).
 template <int D>

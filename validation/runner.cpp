@@ -16,6 +16,7 @@
 #include "progress.hpp"
 #include "report.hpp"
 #include "restart.hpp"
+#include "parallel/comm.hpp"
 #include "simulator/sph_probe.hpp"
 #include "surface/surface_mesh.hpp"
 
@@ -56,13 +57,14 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   const ObserverContext ctx{spec, dx, data_root()};
   std::unique_ptr<Observer<D>> observer = make_observer<D>(ctx);  // checks the validation block first
   FrameLog log;
-  const std::unique_ptr<Method<D>> method = start_method<D>(spec, dx, settings.resume_from, log);
+  const std::unique_ptr<Method<D>> method = start_method<D>(spec, dx, settings.resume_from, log, settings.decompose);
+  const bool writer = !settings.decompose || Comm::world().rank() == 0;  // what every rank computes, rank 0 writes
   Method<D>& run = *method;
   RunResult result;
   result.spacing = dx;
   result.particles = run.particles().size();
   const double end = settings.end_time > 0.0 ? settings.end_time : spec.end_time;
-  fs::create_directories(settings.out_dir);
+  if (writer) fs::create_directories(settings.out_dir);
 
   auto& frames = log.frames;
   double& next_frame = log.next_frame;
@@ -75,10 +77,13 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   auto write_frame = [&]() {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05zu.vtu", frames.size());
-    write_file_atomic(settings.out_dir + "/" + name, run.vtu_frame());
-    if constexpr (D == 3)
-      if (settings.write_surfaces) write_surfaces(run.particles(), dx, settings.out_dir, frames.size());
+    const std::string frame = run.vtu_frame();
+    const ParticleView<D> view = run.particles();
     frames.emplace_back(run.time(), name);
+    if (!writer) return;
+    write_file_atomic(settings.out_dir + "/" + name, frame);
+    if constexpr (D == 3)
+      if (settings.write_surfaces) write_surfaces(view, dx, settings.out_dir, frames.size() - 1);
     write_file_atomic(settings.out_dir + "/frames.pvd", pvd_document(frames, surfaces_of));
   };
 
@@ -111,7 +116,8 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
     progress.done(run.time(), run.steps());
   } catch (const BlowUpError& e) {
     progress.done(run.time(), run.steps());
-    write_file_atomic(settings.out_dir + "/last_good.vtu", run.last_good_frame());
+    const std::string last_good = run.last_good_frame();
+    if (writer) write_file_atomic(settings.out_dir + "/last_good.vtu", last_good);
     std::string saved = settings.out_dir + "/last_good.vtu";
     if (run.writes_checkpoints()) {
       write_run_checkpoint(settings.out_dir + "/last_good.ckpt", run, log);
@@ -127,8 +133,10 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   const auto& counts = result.moving_particles.y;
   for (double c : counts) result.moving_particles_mean += c / static_cast<double>(counts.size());
   if (spec.adaptive) result.adapt = require_sph(run, "the adaptivity report").adapt_account();
+  if (settings.decompose) result.decomposition = require_sph(run, "the decomposition's account").decomposition();
   if (result.status != "error") {
-    write_file_atomic(settings.out_dir + "/final.vtu", run.vtu_frame());
+    const std::string final_frame = run.vtu_frame();
+    if (writer) write_file_atomic(settings.out_dir + "/final.vtu", final_frame);
     result.observed = observer->finish(run);
     for (const auto& [name, metric] : result.observed.metrics)
       if (!metric.pass()) result.status = "fail";
@@ -141,6 +149,7 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
 /// split and merge, checkpoints when the run writes or resumes one.
 void check_run(const CaseSpec& spec, const RunSettings& settings) {
   check_method(spec);
+  if (settings.decompose) check_decomposable(spec);
   if (spec.adaptive) require_sph(spec, "the \"adaptive\" section (split and merge)");
   if ((settings.checkpoint_every > 0 || !settings.resume_from.empty()) && !method_writes_checkpoints(spec.method))
     throw InputError(spec.file, "/method", "--checkpoint-every and --resume are not supported by method \"" +

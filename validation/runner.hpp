@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "case/case_file.hpp"
+#include "parallel/decomposition.hpp"
 #include "scene/scene_builder.hpp"
 #include "observer.hpp"
 
@@ -30,6 +31,7 @@ struct RunResult {
   Series moving_particles{"moving_particles", "time [s]", "moving particles", {}, {}};
   double moving_particles_mean = 0.0;
   std::optional<AdaptAccount> adapt;  ///< what split and merge did (adaptive cases)
+  std::optional<DecompositionAccount> decomposition;  ///< what the decomposition over MPI ranks did (RunSettings::decompose)
 };
 
 struct RunSettings {
@@ -40,6 +42,10 @@ struct RunSettings {
   std::string label;            ///< progress label
   long checkpoint_every = 0;    ///< write checkpoint_<step>.ckpt every N steps (0: none)
   std::string resume_from;      ///< checkpoint to continue from (empty: start at t = 0)
+  /// The scene decomposed over the MPI ranks of the run (`mpirun -n N sandcastle run`): every rank
+  /// runs this with the same settings; rank 0 alone writes the files, the same ones a single
+  /// process writes.
+  bool decompose = false;
 };
 
 /// One simulation of `spec` at spacing dx by its method, with its observer: no twin runs. Never

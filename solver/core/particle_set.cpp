@@ -88,6 +88,14 @@ void ParticleSet<D>::permute(const std::vector<std::size_t>& order) {
 }
 
 template <int D>
+void ParticleSet<D>::truncate(std::size_t n) {
+  if (n >= size()) return;
+  visit_fields([n](std::string_view, auto& field) { field.resize(n); });
+  remove_flag_.clear();
+  ++layout_;
+}
+
+template <int D>
 void ParticleSet<D>::copy_from(const ParticleSet& other) {
   visit_fields_with(other, [](auto& field, const auto& src) { field.resize(src.size()); });
   // One parallel region for all fields (not one per field): each thread copies its share of

@@ -96,6 +96,9 @@ class ParticleSet {
   bool compact();
   /// Reorders every field: new index k holds old particle order[k].
   void permute(const std::vector<std::size_t>& order);
+  /// Removes the particles from index n on (the halo a decomposed run appends after its own
+  /// particles, parallel/decomposition.hpp), keeping the others where they are.
+  void truncate(std::size_t n);
   /// Makes this a copy of `other` (as operator=, reusing this set's storage), copying the fields in
   /// parallel: the blow-up guard copies the state every step.
   void copy_from(const ParticleSet& other);

@@ -8,10 +8,12 @@
 
 namespace sc {
 
-enum class Stage { Neighbours, Porous, Density, Forces, Clusters, Adaptive, Integration, Output, Count };
+/// Halo: the domain decomposition's exchanges between MPI ranks (parallel/decomposition.hpp): the
+/// global grid, migration, the halo and its refreshes, and the step size's reduction.
+enum class Stage { Neighbours, Porous, Density, Forces, Clusters, Adaptive, Integration, Output, Halo, Count };
 
 inline constexpr std::array<std::string_view, static_cast<std::size_t>(Stage::Count)> stage_names = {
-    "neighbours", "porous", "density", "forces", "clusters", "adaptive", "integration", "output"};
+    "neighbours", "porous", "density", "forces", "clusters", "adaptive", "integration", "output", "halo"};
 
 /// Exclusive stage times: every instant counts in exactly one stage. A scope opened inside another
 /// one pauses the outer stage until it closes, so nested scopes never count twice and an outer

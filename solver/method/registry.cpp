@@ -82,6 +82,19 @@ void check_same_run(const Checkpoint& c, const CaseSpec& spec, double dx) {
 
 }  // namespace
 
+void check_decomposable(const CaseSpec& spec) {
+  const std::string rule = " is not decomposed over MPI ranks yet: run this case as one process (without mpirun)";
+  if (spec.method != "sph") throw InputError(spec.file, "/method", "method \"" + spec.method + "\"" + rule);
+  for (std::size_t b = 0; b < spec.blocks.size(); ++b)
+    if (spec.blocks[b].phase() == Phase::Sand)
+      throw InputError(spec.file, "/blocks/" + std::to_string(b), "sand (rigid clusters, frictional stress)" + rule);
+  for (std::size_t m = 0; m < spec.meshes.size(); ++m)
+    if (spec.meshes[m].phase == Phase::Sand)
+      throw InputError(spec.file, "/meshes/" + std::to_string(m), "sand (rigid clusters, frictional stress)" + rule);
+  if (spec.porous) throw InputError(spec.file, "/porous", "porous flow" + rule);
+  if (spec.adaptive) throw InputError(spec.file, "/adaptive", "adaptive sampling (split and merge)" + rule);
+}
+
 std::vector<std::string> method_names() {
   std::vector<std::string> out;
   for (const Entry<2>& e : entries<2>()) out.push_back(e.name);
@@ -121,24 +134,29 @@ bool method_writes_checkpoints(const std::string& name) {
 }
 
 template <int D>
-std::unique_ptr<Method<D>> make_method(const CaseSpec& spec, double dx) {
-  return entry<D>(spec).make(spec, dx);
+std::unique_ptr<Method<D>> make_method(const CaseSpec& spec, double dx, bool decompose) {
+  const Entry<D>& e = entry<D>(spec);
+  if (!decompose) return e.make(spec, dx);
+  check_decomposable(spec);
+  return make_decomposed_sph_method<D>(spec, dx);
 }
 
 template <int D>
-std::unique_ptr<Method<D>> resume_method(const CaseSpec& spec, double dx, const std::string& path, json& run) {
+std::unique_ptr<Method<D>> resume_method(const CaseSpec& spec, double dx, const std::string& path, json& run,
+                                         bool decompose) {
   const Entry<D>& e = entry<D>(spec);
+  if (decompose) check_decomposable(spec);
   if (!e.resume)
     throw InputError(spec.file, "/method", "--resume: method \"" + spec.method + "\" writes no checkpoints");
   const Checkpoint c = read_checkpoint(path);
   check_same_run(c, spec, dx);
   run = c.state.run;
-  return e.resume(spec, dx, c);
+  return decompose ? resume_decomposed_sph_method<D>(spec, dx, c) : e.resume(spec, dx, c);
 }
 
-template std::unique_ptr<Method<2>> make_method<2>(const CaseSpec&, double);
-template std::unique_ptr<Method<3>> make_method<3>(const CaseSpec&, double);
-template std::unique_ptr<Method<2>> resume_method<2>(const CaseSpec&, double, const std::string&, json&);
-template std::unique_ptr<Method<3>> resume_method<3>(const CaseSpec&, double, const std::string&, json&);
+template std::unique_ptr<Method<2>> make_method<2>(const CaseSpec&, double, bool);
+template std::unique_ptr<Method<3>> make_method<3>(const CaseSpec&, double, bool);
+template std::unique_ptr<Method<2>> resume_method<2>(const CaseSpec&, double, const std::string&, json&, bool);
+template std::unique_ptr<Method<3>> resume_method<3>(const CaseSpec&, double, const std::string&, json&, bool);
 
 }  // namespace sc

@@ -25,17 +25,26 @@ void check_method(const CaseSpec& spec);
 /// name keeps the case's method.
 CaseSpec with_method(CaseSpec spec, const std::string& name);
 
+/// Throws InputError (the case file, the JSON path of the feature, the rule) when the case has
+/// something the domain decomposition over MPI ranks does not run yet: a method other than SPH,
+/// sand (rigid clusters, frictional stress), porous flow, or split and merge. Allocates nothing.
+void check_decomposable(const CaseSpec& spec);
+
 /// Whether method `name` writes checkpoints that resume bitwise (Method::writes_checkpoints).
 bool method_writes_checkpoints(const std::string& name);
 
-/// The case's method at t = 0 at spacing dx (check_method first).
+/// The case's method at t = 0 at spacing dx (check_method first). `decompose`: the scene is
+/// decomposed over the MPI ranks of the run, every rank calling this with the same case (SPH of
+/// water and walls only; InputError naming the feature otherwise, before anything is allocated).
 template <int D>
-std::unique_ptr<Method<D>> make_method(const CaseSpec& spec, double dx);
+std::unique_ptr<Method<D>> make_method(const CaseSpec& spec, double dx, bool decompose = false);
 
 /// The case's method continuing from the checkpoint file `path`, which must come from the same
 /// case (parameters hash) and spacing; `run` receives the runner's bookkeeping stored with it.
 /// Throws InputError if the method writes no checkpoints or the file is unreadable or foreign.
+/// `decompose` as for make_method: a checkpoint written by any number of ranks resumes on any number.
 template <int D>
-std::unique_ptr<Method<D>> resume_method(const CaseSpec& spec, double dx, const std::string& path, json& run);
+std::unique_ptr<Method<D>> resume_method(const CaseSpec& spec, double dx, const std::string& path, json& run,
+                                         bool decompose = false);
 
 }  // namespace sc

@@ -39,7 +39,7 @@ inline Pair load_pair(const double* p) {
 }  // namespace
 
 template <int D>
-typename NeighbourGrid<D>::Bounds NeighbourGrid<D>::bounds(const ParticleSet<D>& ps, std::span<const std::uint32_t> which) {
+GridBounds<D> NeighbourGrid<D>::bounds(const ParticleSet<D>& ps, std::span<const std::uint32_t> which) {
   double hmax = 0.0, lo[D], hi[D];
   std::fill(lo, lo + D, INFINITY);
   std::fill(hi, hi + D, -INFINITY);
@@ -62,31 +62,17 @@ typename NeighbourGrid<D>::Bounds NeighbourGrid<D>::bounds(const ParticleSet<D>&
 
 template <int D>
 bool NeighbourGrid<D>::set_grid(const Bounds& moving, const Bounds& fixed) {
-  const double hmax = std::max(moving.hmax, fixed.hmax);
-  if (!(hmax > 0.0)) throw std::logic_error("neighbour search: support radius must be positive");
-  Vec<D> lo;
-  std::array<std::int64_t, D> dims;
-  std::int64_t cells = 1;
-  for (int d = 0; d < D; ++d) {
-    lo[d] = std::min(moving.lo[d], fixed.lo[d]);
-    dims[d] = static_cast<std::int64_t>(std::floor((std::max(moving.hi[d], fixed.hi[d]) - lo[d]) / hmax)) + 1;
-    cells *= dims[d];
-  }
-  if (cells > 400'000'000) throw std::runtime_error("neighbour search: particles spread over too many cells");
-  const bool changed = hmax != cell_ || lo != lo_ || dims != dims_;
-  cell_ = hmax;
-  lo_ = lo;
-  dims_ = dims;
-  cells_ = cells;
+  Bounds all = moving;
+  all.merge(fixed);
+  const GridGeometry<D> g = GridGeometry<D>::from_bounds(imposed_ ? *imposed_ : all);
+  const bool changed = !(g == g_);
+  g_ = g;
   return changed;
 }
 
 template <int D>
 std::uint64_t NeighbourGrid<D>::slot(const ParticleSet<D>& ps, std::size_t i) const {
-  std::int64_t c = 0;
-  for (int d = D - 1; d >= 0; --d)
-    c = c * dims_[d] + std::min<std::int64_t>(dims_[d] - 1, static_cast<std::int64_t>((ps.x[i][d] - lo_[d]) / cell_));
-  return 2 * static_cast<std::uint64_t>(c) + inert_[i];
+  return 2 * static_cast<std::uint64_t>(g_.cell_of(ps.x[i])) + inert_[i];
 }
 
 template <int D>
@@ -151,7 +137,7 @@ void NeighbourGrid<D>::bin_moving(const ParticleSet<D>& ps) {
 // blocks run in parallel and the result is the serial sort's whatever the threads.
 template <int D>
 void NeighbourGrid<D>::sort_by_slot(const ParticleSet<D>& ps) {
-  const std::size_t n = ps.size(), slots = 2 * static_cast<std::size_t>(cells_);
+  const std::size_t n = ps.size(), slots = 2 * static_cast<std::size_t>(g_.cells);
   slot_start_.resize(slots + 2);
   // One block per thread, of at least kSortBlock particles; one block if the blocks' counts would
   // outweigh the particles by far.
@@ -214,40 +200,40 @@ void NeighbourGrid<D>::sort_by_slot(const ParticleSet<D>& ps) {
 // cells before and after it along the dimension, as whole runs of cells (vectorised).
 template <int D>
 void NeighbourGrid<D>::mark_cells_near_moving() {
-  near_moving_.resize(cells_);
-  spread_.resize(cells_);
+  near_moving_.resize(g_.cells);
+  spread_.resize(g_.cells);
 #pragma omp parallel for schedule(static)
-  for (std::int64_t c = 0; c < cells_; ++c) near_moving_[c] = slot_start_[2 * c + 1] > slot_start_[2 * c];
+  for (std::int64_t c = 0; c < g_.cells; ++c) near_moving_[c] = slot_start_[2 * c + 1] > slot_start_[2 * c];
   std::int64_t stride = 1;  // cells between neighbours along dimension d
   for (int d = 0; d < D; ++d) {
-    // Lines along d: `lines` of them, each of dims_[d] runs of `run` cells (stride apart).
-    const std::int64_t run = d == 0 ? 1 : stride, lines = cells_ / (run * dims_[d]);
+    // Lines along d: `lines` of them, each of g_.dims[d] runs of `run` cells (stride apart).
+    const std::int64_t run = d == 0 ? 1 : stride, lines = g_.cells / (run * g_.dims[d]);
     const std::uint8_t* from = near_moving_.data();
     std::uint8_t* to = spread_.data();
     if (d == 0) {
 #pragma omp parallel for schedule(static)
       for (std::int64_t l = 0; l < lines; ++l) {
-        const std::uint8_t* a = from + l * dims_[0];
-        std::uint8_t* b = to + l * dims_[0];
-        const std::int64_t last = dims_[0] - 1;
+        const std::uint8_t* a = from + l * g_.dims[0];
+        std::uint8_t* b = to + l * g_.dims[0];
+        const std::int64_t last = g_.dims[0] - 1;
         b[0] = a[0] | (last > 0 && a[1]);
         for (std::int64_t k = 1; k < last; ++k) b[k] = a[k - 1] | a[k] | a[k + 1];
         if (last > 0) b[last] = a[last - 1] | a[last];
       }
     } else {
-      const std::int64_t rows = lines * dims_[d];
+      const std::int64_t rows = lines * g_.dims[d];
 #pragma omp parallel for schedule(static)
       for (std::int64_t r = 0; r < rows; ++r) {  // run k of line l
-        const std::int64_t k = r % dims_[d];
+        const std::int64_t k = r % g_.dims[d];
         const std::uint8_t* a = from + r * run;
         const std::uint8_t* before = k > 0 ? a - run : a;
-        const std::uint8_t* after = k + 1 < dims_[d] ? a + run : a;
+        const std::uint8_t* after = k + 1 < g_.dims[d] ? a + run : a;
         std::uint8_t* b = to + r * run;
         for (std::int64_t j = 0; j < run; ++j) b[j] = before[j] | a[j] | after[j];
       }
     }
     near_moving_.swap(spread_);
-    stride *= dims_[d];
+    stride *= g_.dims[d];
   }
 }
 
@@ -268,13 +254,13 @@ std::size_t NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::s
   std::array<std::int64_t, D> c0{};
   std::array<std::array<double, 3>, D> gap2{};  // squared distance from x_i to the cells at offset -1, 0, +1
   for (int d = 0; d < D; ++d) {
-    c0[d] = std::min<std::int64_t>(dims_[d] - 1, static_cast<std::int64_t>((xi[d] - lo_[d]) / cell_));
-    const double below = std::max(0.0, xi[d] - (lo_[d] + c0[d] * cell_));
-    const double above = std::max(0.0, lo_[d] + (c0[d] + 1) * cell_ - xi[d]);
+    c0[d] = g_.coord(xi, d);
+    const double below = std::max(0.0, xi[d] - (g_.lo[d] + c0[d] * g_.cell));
+    const double above = std::max(0.0, g_.lo[d] + (c0[d] + 1) * g_.cell - xi[d]);
     gap2[d] = {below * below, 0.0, above * above};
   }
   // Reach with a margin far above the rounding of the cell bounds, so no neighbour is ever cut.
-  const double reach2 = (cell_ * (1.0 + 1e-6)) * (cell_ * (1.0 + 1e-6));
+  const double reach2 = (g_.cell * (1.0 + 1e-6)) * (g_.cell * (1.0 + 1e-6));
   std::array<std::uint32_t, 27> begin, end;  // ranges of candidates in sorted_, filled before use
   std::size_t ranges = 0, candidates = 0;
   auto add_range = [&](std::uint32_t b, std::uint32_t e) {
@@ -290,14 +276,14 @@ std::size_t NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::s
     double row_gap2 = 0.0;
     for (int d = D - 1; d >= 1; --d) {
       const std::int64_t k = c0[d] + off[d];
-      if (k < 0 || k >= dims_[d]) { inside = false; break; }
-      row = row * dims_[d] + k;
+      if (k < 0 || k >= g_.dims[d]) { inside = false; break; }
+      row = row * g_.dims[d] + k;
       row_gap2 += gap2[d][off[d] + 1];
     }
     if (inside && row_gap2 <= reach2) {
       const std::int64_t x_first = c0[0] > 0 && row_gap2 + gap2[0][0] <= reach2 ? c0[0] - 1 : c0[0];
-      const std::int64_t x_last = c0[0] + 1 < dims_[0] && row_gap2 + gap2[0][2] <= reach2 ? c0[0] + 1 : c0[0];
-      row *= dims_[0];
+      const std::int64_t x_last = c0[0] + 1 < g_.dims[0] && row_gap2 + gap2[0][2] <= reach2 ? c0[0] + 1 : c0[0];
+      row *= g_.dims[0];
       if (!inert_[i])
         add_range(slot_start_[2 * (row + x_first)], slot_start_[2 * (row + x_last) + 2]);
       else

@@ -15,10 +15,12 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "core/particle_set.hpp"
+#include "neighbours/grid_geometry.hpp"
 
 namespace sc {
 
@@ -39,6 +41,14 @@ class NeighbourGrid {
   void bin_moving(const ParticleSet<D>& particles);
   /// Builds the lists from the cells of the last bin() of the same particles.
   void find_pairs(const ParticleSet<D>& particles);
+  /// Bins on the grid of `bounds` from now on instead of the particles' own bounds (the bounds of
+  /// the whole scene when the particles are one rank's part of it, parallel/decomposition.hpp), so
+  /// that every rank's cells are the cells of the one-process grid; nullopt: the particles' own.
+  void impose_bounds(const std::optional<GridBounds<D>>& bounds) { imposed_ = bounds; }
+  /// The grid of the last bin().
+  const GridGeometry<D>& geometry() const { return g_; }
+  /// Bounds of the positions and largest support of the particles `which` (exact: any threads).
+  static GridBounds<D> bounds(const ParticleSet<D>& ps, std::span<const std::uint32_t> which);
 
   std::span<const std::uint32_t> of(std::size_t i) const {
     return {index_.data() + offset_[i], index_.data() + offset_[i + 1]};
@@ -56,13 +66,8 @@ class NeighbourGrid {
                                 std::size_t used) const;
   /// inert_, moving_, fixed_ and the layout of the particles; sizes the per-particle arrays.
   void classify(const ParticleSet<D>& ps);
-  struct Bounds {
-    std::array<double, D> lo, hi;
-    double hmax;
-  };
-  /// Bounds of the positions and largest support of the particles `which` (exact: any threads).
-  static Bounds bounds(const ParticleSet<D>& ps, std::span<const std::uint32_t> which);
-  /// Grid from the bounds of all particles; true if it differs from the last one.
+  using Bounds = GridBounds<D>;
+  /// Grid from the bounds of all particles (or the imposed ones); true if it differs from the last one.
   bool set_grid(const Bounds& moving, const Bounds& fixed);
   /// Slot of particle i in the current grid (see slot_start_).
   std::uint64_t slot(const ParticleSet<D>& ps, std::size_t i) const;
@@ -92,10 +97,8 @@ class NeighbourGrid {
   std::vector<double> ch2_;
   std::vector<std::uint32_t> part_start_;   // per part of the slots: start in sorted_ (sort_by_slot)
   std::vector<std::uint32_t> block_count_;  // per block of particles and slot: counts, then fill positions (bin)
-  std::array<std::int64_t, D> dims_{};
-  Vec<D> lo_;
-  double cell_ = 0.0;
-  std::int64_t cells_ = 0;
+  GridGeometry<D> g_;
+  std::optional<Bounds> imposed_;
   std::vector<std::size_t> storage_order_;
 };
 

@@ -1,7 +1,9 @@
 #include "simulator/simulator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include "adaptive/density_blend.hpp"
 #include "boundary/wall_pressure.hpp"
@@ -58,7 +60,7 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
 }
 
 template <int D>
-Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params)
+Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params, std::optional<Comm> ranks)
     : ps_(std::move(particles)), params_(std::move(params)) {
   g_ = to_vec<D>(params_.gravity);
   lo_ = to_vec<D>(params_.domain_min);
@@ -67,6 +69,19 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params)
   if (params_.tank && params_.tank->collision) tank_walls_ = TankWalls<D>::from_tank(*params_.tank, params_.tank_wall_thickness);
   last_dt_ = params_.dt_max;
   check_state();
+  if (!ranks || ranks->size() == 1) return;
+  if (has_sand_ || params_.porous || params_.adaptive)
+    throw std::logic_error("the domain decomposition runs water and fixed walls only");
+  dd_.emplace(*ranks);
+  dd_->scatter(ps_);
+}
+
+template <int D>
+template <class Field>
+void Simulator<D>::refresh_halo(Field& field) {
+  if (!dd_) return;
+  auto t = timers_.time(Stage::Halo);
+  dd_->refresh(field);
 }
 
 template <int D>
@@ -81,10 +96,17 @@ double Simulator<D>::stable_dt() const {
   const auto n = static_cast<std::int64_t>(ps_.size());
 #pragma omp parallel for schedule(static) reduction(min : hmin) reduction(max : vmax, amax)  // exact: any threads
   for (std::int64_t i = 0; i < n; ++i) {
-    if (!ps_.moves(i)) continue;
+    if (!ps_.moves(i) || (dd_ && dd_->is_halo(i))) continue;
     hmin = std::min(hmin, ps_.h[i] / params_.support_ratio);
     vmax = std::max(vmax, ps_.v[i].norm());
     amax = std::max(amax, ps_.force[i].norm() / ps_.m[i]);
+  }
+  if (dd_) {  // over the ranks (exact: minima and maxima)
+    std::array<double, 3> m = {-hmin, vmax, amax};
+    dd_->comm().max(m);
+    hmin = -m[0];
+    vmax = m[1];
+    amax = m[2];
   }
   if (!std::isfinite(hmin)) return params_.dt_max;
   double dt = params_.dt_max;
@@ -118,14 +140,21 @@ void Simulator<D>::compute_forces() {
       set_partial_water_pressure(ps_, nb_, partial_water_mass());
       set_partial_water_density(ps_, partial_water_mass(), params_.porous->fluid_density);
     }
+    refresh_halo(ps_.rho);  // the walls' pressure reads the moving neighbours'
+    refresh_halo(ps_.p);
     extrapolate_wall_pressure(ps_, nb_, g_, params_.eos);
+    refresh_halo(ps_.rho);  // the corrections and forces read the walls'
+    refresh_halo(ps_.p);
   }
   {
     auto t = timers_.time(Stage::Forces);
     const auto n = static_cast<std::int64_t>(ps_.size());
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) ps_.force[i] = ps_.moves(i) ? Vec<D>(ps_.m[i] * g_) : Vec<D>::Zero();
-    if (params_.water.gradient_correction) compute_gradient_corrections(ps_, nb_, correction_);
+    if (params_.water.gradient_correction) {
+      compute_gradient_corrections(ps_, nb_, correction_);
+      refresh_halo(correction_);
+    }
     add_water_forces(ps_, nb_, params_.water, correction_);
     if (has_sand_) compute_sand_forces();
     if (partial_water_mass() > 0.0)
@@ -153,7 +182,8 @@ void Simulator<D>::sort_and_find_neighbours() {
   // Particles that are neighbours in space should be neighbours in memory: every kSortEvery steps
   // (counted from the run's start, so a resumed run sorts at the same steps) they are put back in
   // storage order (NeighbourGrid::storage_order). A sort only relabels them (ParticleSet::permute, ids kept).
-  if (steps_ % kSortEvery == 0) {
+  // Decomposed, the ranks have put their particles in that order at the step's start.
+  if (!dd_ && steps_ % kSortEvery == 0) {
     ps_.permute(nb_.storage_order());
     nb_.bin(ps_);
   }
@@ -199,7 +229,17 @@ double Simulator<D>::step() {
   // Whatever the stages below leave untimed (the blow-up guard's copy and check, the step size,
   // the compaction) counts as integration: the stage timers are exclusive (core/stage_timers.hpp).
   auto t = timers_.time(Stage::Integration);
+  ++revision_;
+  if (dd_) {
+    auto th = timers_.time(Stage::Halo);
+    dd_->begin_step(ps_, steps_, steps_ % kSortEvery == 0);
+    nb_.impose_bounds(dd_->bounds());
+  }
   save_last_good();
+  if (dd_) {
+    auto th = timers_.time(Stage::Halo);
+    dd_->add_halo(ps_);
+  }
   compute_forces();
   const double dt = stable_dt();
   if (has_sand_) {
@@ -216,9 +256,14 @@ double Simulator<D>::step() {
     auto tp = timers_.time(Stage::Porous);
     porous_step(ps_, nb_, *params_.porous, g_, dt, porous_work_);
   }
+  if (dd_) {
+    auto th = timers_.time(Stage::Halo);
+    dd_->drop_halo(ps_);
+  }
   ps_.compact();
   try {
-    check_state();
+    if (dd_) check_state_over_ranks();
+    else check_state();
   } catch (const BlowUpError&) {
     ps_ = last_good_;
     guard_synced_ = false;
@@ -260,15 +305,42 @@ std::optional<StateError> Simulator<D>::state_error(std::size_t i) const {
 }
 
 template <int D>
-void Simulator<D>::check_state() const {
+std::size_t Simulator<D>::first_error() const {
   const auto n = static_cast<std::int64_t>(ps_.size());
   std::int64_t first = n;  // the lowest offending index, whatever the number of threads
 #pragma omp parallel for schedule(static) reduction(min : first)
   for (std::int64_t i = 0; i < n; ++i)
     if (i < first && state_error(i)) first = i;
-  if (first == n) return;
+  return static_cast<std::size_t>(first);
+}
+
+template <int D>
+void Simulator<D>::check_state() const {
+  const std::size_t first = first_error();
+  if (first == ps_.size()) return;
   const StateError e = *state_error(first);
   throw BlowUpError(steps_ + 1, time_, static_cast<long>(first), std::string(phase_name(ps_.phase_of(first))), e.field, e.what);
+}
+
+template <int D>
+void Simulator<D>::check_state_over_ranks() const {
+  const std::size_t n = ps_.size(), first = first_error();
+  // Keys follow the index on each rank, and a key is the particle's index in the one-process run.
+  std::array<std::uint64_t, 1> key = {first < n ? dd_->key(first) : UINT64_MAX};
+  dd_->comm().min(key);
+  if (key[0] == UINT64_MAX) return;
+  const bool mine = first < n && dd_->key(first) == key[0];
+  std::array<std::uint64_t, 1> root = {mine ? static_cast<std::uint64_t>(dd_->comm().rank()) : UINT64_MAX};
+  dd_->comm().min(root);
+  std::string what;
+  if (mine) {
+    const StateError e = *state_error(first);
+    what = std::string(phase_name(ps_.phase_of(first))) + '\n' + e.field + '\n' + e.what;
+  }
+  what = dd_->comm().broadcast(what, static_cast<int>(root[0]));
+  const std::size_t a = what.find('\n'), b = what.find('\n', a + 1);
+  throw BlowUpError(steps_ + 1, time_, static_cast<long>(key[0]), what.substr(0, a), what.substr(a + 1, b - a - 1),
+                    what.substr(b + 1));
 }
 
 template class Simulator<2>;

@@ -10,6 +10,7 @@
 #include "core/stage_timers.hpp"
 #include "case/case_file.hpp"
 #include "neighbours/neighbour_grid.hpp"
+#include "parallel/decomposition.hpp"
 #include "porous/porous_flow.hpp"
 #include "sand/clusters.hpp"
 #include "sand/sand_forces.hpp"
@@ -45,7 +46,11 @@ struct StateError {
 template <int D>
 class Simulator {
  public:
-  Simulator(ParticleSet<D> particles, SimulationParams params);
+  /// `particles`: the whole scene. With `ranks` of more than one rank, the scene is decomposed over
+  /// them (parallel/decomposition.hpp): every rank passes the same scene and keeps its share, and
+  /// the run is bitwise the one-process run. Decomposed: water and fixed walls only (no sand, porous
+  /// flow or adaptivity; the caller refuses those first, check_decomposable in method/registry.hpp).
+  Simulator(ParticleSet<D> particles, SimulationParams params, std::optional<Comm> ranks = std::nullopt);
 
   /// Advances by one step; returns the step size used. Throws BlowUpError if the new state is
   /// invalid; the particles then still hold the last good state (see last_good()).
@@ -53,11 +58,14 @@ class Simulator {
   /// Step size for the current state: dt_max, or the CFL, force and viscous limits when cfl > 0.
   double stable_dt() const;
 
+  /// The particles of this rank (all of them in one process; decomposed, this rank's own, without
+  /// halo, between steps).
   const ParticleSet<D>& particles() const { return ps_; }
   /// Mutable access: the next step copies the whole state for its blow-up guard (not only what a
   /// step changes), so changes made through it must be made before that step.
   ParticleSet<D>& particles() {
     guard_synced_ = false;
+    ++revision_;
     return ps_;
   }
   /// The state at the start of the last step (the blow-up guard's copy).
@@ -75,6 +83,10 @@ class Simulator {
   const StageTimers& timers() const { return timers_; }
   /// What adaptivity did so far in this run (zero when the case has no "adaptive" section).
   const AdaptAccount& adapt_account() const { return adapt_account_; }
+  /// The decomposition over MPI ranks; null in one process.
+  const Decomposition<D>* decomposition() const { return dd_ ? &*dd_ : nullptr; }
+  /// Changes whenever the particles may have changed (a step, mutable access).
+  long revision() const { return revision_; }
 
  private:
   void compute_forces();
@@ -95,8 +107,16 @@ class Simulator {
   /// after the densities of the step: rebuilds the neighbour lists for the new particles and
   /// sets the density offsets so that no particle's density jumps.
   void adapt();
-  /// Throws BlowUpError naming the first offending particle (lowest index).
+  /// Throws BlowUpError naming the first offending particle (lowest index; decomposed: lowest key,
+  /// its index in the one-process run, on every rank).
   void check_state() const;
+  /// check_state over the ranks of the decomposition.
+  void check_state_over_ranks() const;
+  /// The lowest index of an offending particle (size() if none).
+  std::size_t first_error() const;
+  /// Overwrites the halo's values of `field` with their owners' (decomposed runs; else nothing).
+  template <class Field>
+  void refresh_halo(Field& field);
   /// What is wrong with particle i, if anything.
   std::optional<StateError> state_error(std::size_t i) const;
 
@@ -123,6 +143,8 @@ class Simulator {
   long steps_ = 0;
   StageTimers timers_;
   AdaptAccount adapt_account_;
+  std::optional<Decomposition<D>> dd_;
+  long revision_ = 0;
 };
 
 }  // namespace sc

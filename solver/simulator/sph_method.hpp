@@ -25,7 +25,7 @@ class SphMethod final : public Method<D> {
   double time() const override { return sim_.time(); }
   long steps() const override { return sim_.steps(); }
   ParticleView<D> particles() const override;
-  std::string checksum() const override { return sim_.particles().checksum(); }
+  std::string checksum() const override { return state().checksum(); }
   std::vector<StageTime> stage_times() const override;
   void reset_stage_times() override { sim_.timers().reset(); }
   std::string vtu_frame() const override;
@@ -37,6 +37,12 @@ class SphMethod final : public Method<D> {
   const Simulator<D>& simulator() const { return sim_; }
 
  private:
+  /// Every particle of the run, in the one-process order: the simulator's own or, decomposed over
+  /// MPI ranks, gathered from every rank (collective; kept until the particles change).
+  const ParticleSet<D>& state() const;
+
+  mutable ParticleSet<D> gathered_;
+  mutable long gathered_revision_ = -1;
   Simulator<D> sim_;
   std::string parameters_hash_;
   double spacing_;
@@ -52,5 +58,14 @@ std::unique_ptr<Method<D>> make_sph_method(const CaseSpec& spec, double dx);
 /// SPH continuing from a checkpoint of the same case and spacing (checked by the caller).
 template <int D>
 std::unique_ptr<Method<D>> resume_sph_method(const CaseSpec& spec, double dx, const Checkpoint& checkpoint);
+
+/// make_sph_method and resume_sph_method with the scene decomposed over the MPI ranks of the run
+/// (parallel/decomposition.hpp; the registry checks the case first, check_decomposable): every
+/// rank calls them with the same case; the run is bitwise the one-process run, and what the method shows (particles, checksum,
+/// frames, checkpoints) is the whole scene in the one-process order, gathered on every rank.
+template <int D>
+std::unique_ptr<Method<D>> make_decomposed_sph_method(const CaseSpec& spec, double dx);
+template <int D>
+std::unique_ptr<Method<D>> resume_decomposed_sph_method(const CaseSpec& spec, double dx, const Checkpoint& checkpoint);
 
 }  // namespace sc

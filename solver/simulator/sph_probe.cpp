@@ -34,6 +34,12 @@ const AdaptAccount& SphProbe<D>::adapt_account() const {
 }
 
 template <int D>
+std::optional<DecompositionAccount> SphProbe<D>::decomposition() const {
+  if (!sim_.decomposition()) return std::nullopt;
+  return sim_.decomposition()->totals();
+}
+
+template <int D>
 SphProbe<D> require_sph(const Method<D>& method, std::string_view who) {
   const auto* sph = dynamic_cast<const SphMethod<D>*>(&method);
   if (!sph) throw std::logic_error(std::string(who) + " needs the SPH method; this run uses \"" + std::string(method.name()) + "\"");

@@ -4,6 +4,7 @@
 // ParticleView (method/method.hpp). This header does not include the simulator's: a caller sees
 // the few quantities below, not SPH's internals.
 #pragma once
+#include <optional>
 #include <string_view>
 
 #include "adaptive/adaptivity.hpp"
@@ -11,6 +12,7 @@
 #include "case/case_file.hpp"
 #include "method/method.hpp"
 #include "neighbours/neighbour_grid.hpp"
+#include "parallel/decomposition.hpp"
 
 namespace sc {
 
@@ -35,6 +37,9 @@ class SphProbe {
   double full_water_mass() const;
   /// What split and merge did so far (zero without an "adaptive" section).
   const AdaptAccount& adapt_account() const;
+  /// What the decomposition over MPI ranks did, summed over the ranks (collective: every rank
+  /// calls it); nullopt in one process.
+  std::optional<DecompositionAccount> decomposition() const;
 
  private:
   const Simulator<D>& sim_;

@@ -1,0 +1,260 @@
+#include "parallel/decomposition.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+
+#include "neighbours/neighbour_grid.hpp"
+
+namespace sc {
+
+namespace {
+
+/// Particles `which` of ps with their keys, as bytes: their count, their keys, then each field's
+/// values (ParticleSet::visit_fields order).
+template <int D>
+std::string pack(const ParticleSet<D>& ps, const std::vector<std::uint32_t>& which, const std::vector<std::uint64_t>& key) {
+  std::string out;
+  const std::uint64_t n = which.size();
+  out.append(reinterpret_cast<const char*>(&n), sizeof n);
+  for (const std::uint32_t i : which) out.append(reinterpret_cast<const char*>(&key[i]), sizeof key[i]);
+  ps.visit_fields([&](std::string_view, const auto& field) {
+    using T = typename std::decay_t<decltype(field)>::value_type;
+    for (const std::uint32_t i : which) out.append(static_cast<const char*>(field_bytes(field[i])), sizeof(T));
+  });
+  return out;
+}
+
+/// Appends the particles of `bytes` (pack) to `into` and their keys to `keys`.
+template <int D>
+void unpack(const std::string& bytes, ParticleSet<D>& into, std::vector<std::uint64_t>& keys) {
+  if (bytes.empty()) return;
+  std::uint64_t n = 0;
+  std::size_t at = 0;
+  std::memcpy(&n, bytes.data(), sizeof n);
+  at += sizeof n;
+  const std::size_t old_keys = keys.size();
+  keys.resize(old_keys + n);
+  std::memcpy(keys.data() + old_keys, bytes.data() + at, n * sizeof(std::uint64_t));
+  at += n * sizeof(std::uint64_t);
+  into.visit_fields([&](std::string_view, auto& field) {
+    using T = typename std::decay_t<decltype(field)>::value_type;
+    const std::size_t old = field.size();
+    field.resize(old + n);
+    for (std::size_t k = 0; k < n; ++k, at += sizeof(T)) std::memcpy(field_bytes(field[old + k]), bytes.data() + at, sizeof(T));
+  });
+}
+
+std::vector<std::uint32_t> all_indices(std::size_t n) {
+  std::vector<std::uint32_t> all(n);
+  std::iota(all.begin(), all.end(), 0u);
+  return all;
+}
+
+/// The order that puts `key` in ascending order (identity when it already is).
+std::vector<std::size_t> key_order(const std::vector<std::uint64_t>& key) {
+  std::vector<std::size_t> order(key.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  if (!std::is_sorted(key.begin(), key.end()))
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+  return order;
+}
+
+constexpr std::int64_t kNoBorder = std::numeric_limits<std::int64_t>::max();
+
+}  // namespace
+
+template <int D>
+int Decomposition<D>::owner(std::int64_t c) const {
+  return static_cast<int>(std::upper_bound(cut_.begin(), cut_.end(), c) - cut_.begin());
+}
+
+template <int D>
+void Decomposition<D>::find_grid(const ParticleSet<D>& ps, bool global) {
+  GridBounds<D> b = NeighbourGrid<D>::bounds(ps, all_indices(ps.size()));
+  if (!global) {
+    std::vector<double> m(2 * D + 1);
+    for (int d = 0; d < D; ++d) {
+      m[d] = -b.lo[d];
+      m[D + d] = b.hi[d];
+    }
+    m[2 * D] = b.hmax;
+    comm_.max(m);
+    for (int d = 0; d < D; ++d) {
+      b.lo[d] = -m[d];
+      b.hi[d] = m[D + d];
+    }
+    b.hmax = m[2 * D];
+  }
+  bounds_ = b;
+  grid_ = GridGeometry<D>::from_bounds(b);
+}
+
+template <int D>
+void Decomposition<D>::rebalance(const ParticleSet<D>& ps, bool global) {
+  int axis = 0;
+  for (int d = 1; d < D; ++d)
+    if (bounds_.hi[d] - bounds_.lo[d] > bounds_.hi[axis] - bounds_.lo[axis]) axis = d;
+  std::vector<std::uint64_t> layer(static_cast<std::size_t>(grid_.dims[axis]), 0);
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (!ps.inert(i)) ++layer[grid_.coord(ps.x[i], axis)];
+  if (!global) comm_.sum(layer);
+  const std::uint64_t total = std::accumulate(layer.begin(), layer.end(), std::uint64_t{0});
+  const auto ranks = static_cast<std::uint64_t>(comm_.size());
+  // Border r (between ranks r and r + 1) at the first layer before which at least (r + 1)/N of
+  // the moving particles lie.
+  std::vector<std::int64_t> cut(ranks - 1, kNoBorder);
+  std::uint64_t before = 0;
+  std::size_t r = 0;
+  for (std::size_t c = 0; c < layer.size() && r < cut.size(); before += layer[c++])
+    while (r < cut.size() && before * ranks >= (r + 1) * total) cut[r++] = static_cast<std::int64_t>(c);
+  for (; r < cut.size(); ++r) cut[r] = static_cast<std::int64_t>(layer.size());
+  if (axis != axis_ || cut != cut_) ++account_.rebalances;
+  axis_ = axis;
+  cut_ = cut;
+}
+
+template <int D>
+void Decomposition<D>::append(ParticleSet<D>& ps, const std::vector<std::string>& received) {
+  ParticleSet<D>& add = ps.additions();
+  for (const std::string& bytes : received) unpack(bytes, add, key_);
+  ps.compact();  // nothing queued for removal: appends
+}
+
+template <int D>
+void Decomposition<D>::reorder(ParticleSet<D>& ps, const std::vector<std::size_t>& order) {
+  ps.permute(order);
+  std::vector<std::uint64_t> key(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) key[k] = key_[order[k]];
+  key_.swap(key);
+}
+
+template <int D>
+void Decomposition<D>::scatter(ParticleSet<D>& ps) {
+  key_.resize(ps.size());
+  std::iota(key_.begin(), key_.end(), std::uint64_t{0});
+  find_grid(ps, true);
+  cut_.assign(static_cast<std::size_t>(comm_.size() - 1), kNoBorder);
+  rebalance(ps, true);
+  std::vector<std::uint64_t> kept;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (owner(grid_.coord(ps.x[i], axis_)) != comm_.rank()) ps.queue_remove(i);
+    else kept.push_back(key_[i]);
+  key_.swap(kept);
+  ps.compact();
+}
+
+template <int D>
+void Decomposition<D>::begin_step(ParticleSet<D>& ps, long step, bool sort) {
+  find_grid(ps, false);
+  if (step % kRebalanceEvery == 0) rebalance(ps, false);
+  std::vector<std::vector<std::uint32_t>> leaving(static_cast<std::size_t>(comm_.size()));
+  std::vector<std::size_t> staying;
+  staying.reserve(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const int r = owner(grid_.coord(ps.x[i], axis_));
+    if (r == comm_.rank()) staying.push_back(i);
+    else leaving[r].push_back(static_cast<std::uint32_t>(i));
+  }
+  std::vector<std::string> send(leaving.size());
+  for (std::size_t r = 0; r < leaving.size(); ++r)
+    if (!leaving[r].empty()) send[r] = pack(ps, leaving[r], key_);
+  account_.migrated += static_cast<long>(ps.size() - staying.size());
+  const std::size_t before = ps.size();
+  append(ps, comm_.exchange(send));
+  if (staying.size() < before || ps.size() > before) {
+    // One reorder: the staying particles (in key order) merged by key with the arrivals.
+    std::vector<std::size_t> arrived(ps.size() - before), order(staying.size() + arrived.size());
+    std::iota(arrived.begin(), arrived.end(), before);
+    const auto by_key = [&](std::size_t a, std::size_t b) { return key_[a] < key_[b]; };
+    std::sort(arrived.begin(), arrived.end(), by_key);
+    std::merge(staying.begin(), staying.end(), arrived.begin(), arrived.end(), order.begin(), by_key);
+    reorder(ps, order);
+  }
+  if (sort) sort_keys(ps);
+  ++account_.steps;
+}
+
+template <int D>
+void Decomposition<D>::sort_keys(ParticleSet<D>& ps) {
+  // Slot (inert, cell) in the one-process storage order: the particles that move first, by cell,
+  // then the inert ones by cell (NeighbourGrid::storage_order); within a slot by the old key.
+  const auto slot = [&](std::size_t i) {
+    return static_cast<std::size_t>((ps.inert(i) ? grid_.cells : 0) + grid_.cell_of(ps.x[i]));
+  };
+  std::vector<std::uint64_t> start(2 * static_cast<std::size_t>(grid_.cells), 0);
+  for (std::size_t i = 0; i < ps.size(); ++i) ++start[slot(i)];
+  comm_.sum(start);
+  std::exclusive_scan(start.begin(), start.end(), start.begin(), std::uint64_t{0});
+  // A slot's particles all lie on this rank (a slab is whole cell layers), here in old key order.
+  for (std::size_t i = 0; i < ps.size(); ++i) key_[i] = start[slot(i)]++;
+  reorder(ps, key_order(key_));
+}
+
+template <int D>
+void Decomposition<D>::add_halo(ParticleSet<D>& ps) {
+  const auto ranks = static_cast<std::size_t>(comm_.size());
+  own_ = ps.size();
+  send_.assign(ranks, {});
+  for (std::size_t i = 0; i < own_; ++i) {
+    const std::int64_t c = grid_.coord(ps.x[i], axis_);
+    for (std::size_t r = 0; r < ranks; ++r) {
+      if (static_cast<int>(r) == comm_.rank()) continue;
+      const std::int64_t from = r == 0 ? std::numeric_limits<std::int64_t>::min() : cut_[r - 1] - 1;
+      const std::int64_t to = r + 1 == ranks ? kNoBorder : cut_[r];  // one layer past the slab's last
+      if (c >= from && c <= to) send_[r].push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  std::vector<std::string> send(ranks);
+  for (std::size_t r = 0; r < ranks; ++r)
+    if (!send_[r].empty()) send[r] = pack(ps, send_[r], key_);
+  const std::vector<std::string> received = comm_.exchange(send);
+  // Appended after this rank's own particles, each source's in its key order: a cell's particles
+  // all come from one rank, so every cell keeps the one-process order (NeighbourGrid orders a
+  // cell's particles by index).
+  append(ps, received);
+  recv_.assign(ranks, {});
+  std::size_t at = own_;
+  for (std::size_t r = 0; r < ranks; ++r) {
+    std::uint64_t n = 0;
+    if (!received[r].empty()) std::memcpy(&n, received[r].data(), sizeof n);
+    for (std::uint64_t k = 0; k < n; ++k) recv_[r].push_back(static_cast<std::uint32_t>(at++));
+  }
+  account_.halo_particles += static_cast<long>(ps.size() - own_);
+}
+
+template <int D>
+void Decomposition<D>::drop_halo(ParticleSet<D>& ps) {
+  ps.truncate(own_);
+  key_.resize(own_);
+  own_ = kNoHalo;
+  send_.clear();
+  recv_.clear();
+}
+
+template <int D>
+ParticleSet<D> Decomposition<D>::gather(const ParticleSet<D>& owned) const {
+  const std::vector<std::string> all = comm_.all_gather(pack(owned, all_indices(owned.size()), key_));
+  ParticleSet<D> out;
+  std::vector<std::uint64_t> keys;
+  for (const std::string& bytes : all) unpack(bytes, out, keys);
+  out.permute(key_order(keys));
+  out.set_next_id(owned.next_id());
+  return out;
+}
+
+template <int D>
+DecompositionAccount Decomposition<D>::totals() const {
+  std::vector<std::uint64_t> sums = {static_cast<std::uint64_t>(account_.migrated), static_cast<std::uint64_t>(account_.halo_particles)};
+  comm_.sum(sums);
+  DecompositionAccount a = account_;
+  a.ranks = comm_.size();
+  a.migrated = static_cast<long>(sums[0]);
+  a.halo_particles = static_cast<long>(sums[1]);
+  return a;
+}
+
+template class Decomposition<2>;
+template class Decomposition<3>;
+
+}  // namespace sc

@@ -1,0 +1,130 @@
+// One SPH scene decomposed over MPI ranks: slabs of the neighbour grid's cells along the longest
+// axis of the scene, a halo of the particles one cell layer around each slab, and migration of the
+// particles that cross a slab's border (docs/scaling.md).
+//
+// Results do not depend on the number of ranks, bitwise. A particle's sums run over its neighbour
+// list, which the grid orders by cell, then (inert last) by the particles' order in storage; so
+// every cell's particles must lie in storage in the order the one-process run stores them. Each
+// particle carries its position in that storage as its key: the scene's index at the start, and at
+// each storage sort of the simulator (Simulator::kSortEvery) its place in the one-process sort — its
+// slot (inert, cell) first, then its old key — computed from the slots' counts summed over the
+// ranks. A slab is a whole number of cell layers, so a cell's particles all belong to one rank:
+// every rank keeps its own particles in key order and appends the halo after them, each source
+// rank's in key order. Every collective is exact: minima and maxima (the grid's bounds, the step
+// size), integer sums (counts), and copies of bytes.
+#pragma once
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/particle_set.hpp"
+#include "neighbours/grid_geometry.hpp"
+#include "parallel/comm.hpp"
+
+namespace sc {
+
+/// What the decomposition did, summed over the ranks.
+struct DecompositionAccount {
+  int ranks = 1;
+  long rebalances = 0;      ///< slab choices that moved a border (every Decomposition::kRebalanceEvery steps at most; the first included)
+  long migrated = 0;        ///< particles that moved to another rank's slab
+  long halo_particles = 0;  ///< halo copies received, over all steps
+  long steps = 0;
+};
+
+template <int D>
+class Decomposition {
+ public:
+  /// Steps between two choices of the slabs (by particle count).
+  static constexpr long kRebalanceEvery = 8;
+
+  explicit Decomposition(Comm comm) : comm_(comm) {}
+  const Comm& comm() const { return comm_; }
+
+  /// `ps`, the whole scene in its one-process order (the same on every rank), becomes this rank's
+  /// share; the keys are the scene's indices.
+  void scatter(ParticleSet<D>& ps);
+  /// Start of step `step` on this rank's particles `ps` (no halo): the bounds of the whole scene
+  /// (bounds()), new slabs every kRebalanceEvery steps, migration of the particles whose cell lies
+  /// in another rank's slab, and, when `sort` (a storage sort of the simulator), the new keys of
+  /// the one-process sort with `ps` put in their order.
+  void begin_step(ParticleSet<D>& ps, long step, bool sort);
+  /// Adds the halo to `ps`, after this rank's own particles: a copy of every other rank's particles
+  /// in the cell layers next to this rank's slab, each rank's in key order.
+  void add_halo(ParticleSet<D>& ps);
+  /// Removes the halo from `ps` again.
+  void drop_halo(ParticleSet<D>& ps);
+  /// Overwrites the halo's values of `field` (one entry per particle of `ps` with its halo) with
+  /// their owners' values.
+  template <class Field>
+  void refresh(Field& field) const;
+
+  /// Whether particle i of `ps` is a halo copy (the halo follows this rank's own particles).
+  bool is_halo(std::size_t i) const { return i >= own_; }
+  /// Bounds of the whole scene at the start of the step (all ranks' particles).
+  const GridBounds<D>& bounds() const { return bounds_; }
+  /// The key (place in the one-process storage order) of particle i of `ps`.
+  std::uint64_t key(std::size_t i) const { return key_[i]; }
+  /// Every rank's particles `owned` (no halo) in the one-process order, on every rank. Collective.
+  ParticleSet<D> gather(const ParticleSet<D>& owned) const;
+  /// The account summed over the ranks. Collective.
+  DecompositionAccount totals() const;
+
+ private:
+  /// The rank whose slab holds axis cell coordinate c.
+  int owner(std::int64_t c) const;
+  /// Global bounds and grid of `ps`'s particles; `global`: ps is the whole scene on every rank.
+  void find_grid(const ParticleSet<D>& ps, bool global);
+  /// New slabs along the longest axis of the bounds, each with an equal share of the moving
+  /// particles of `ps` counted per cell layer (summed over the ranks unless `global`). The inert
+  /// walls are not counted: their cells are binned once and they take part in no sum of their own
+  /// away from the moving particles, so the moving particles are the work.
+  void rebalance(const ParticleSet<D>& ps, bool global);
+  /// The one-process storage sort's keys for `ps`, then ps in their order.
+  void sort_keys(ParticleSet<D>& ps);
+  /// Appends the particles `received` (packed, each with its key) to ps and the keys.
+  void append(ParticleSet<D>& ps, const std::vector<std::string>& received);
+  /// Puts ps and the keys in `order` (new index k holds old order[k]; particles left out are dropped).
+  void reorder(ParticleSet<D>& ps, const std::vector<std::size_t>& order);
+  static constexpr std::size_t kNoHalo = SIZE_MAX;
+
+  Comm comm_;
+  GridBounds<D> bounds_ = GridBounds<D>::empty();
+  GridGeometry<D> grid_;
+  int axis_ = 0;
+  std::vector<std::int64_t> cut_;  // rank r's slab: axis cells [cut_[r - 1], cut_[r]) (r = 0: from −∞; last: to +∞)
+  std::vector<std::uint64_t> key_;
+  std::size_t own_ = kNoHalo;  // during a step: this rank's own particles, the halo after them
+  std::vector<std::vector<std::uint32_t>> send_, recv_;  // per rank: indices of ps sent to it / received from it in the halo
+  DecompositionAccount account_;
+};
+
+/// The raw bytes of one particle field's value (a number, or a fixed-size Eigen vector or matrix).
+template <class T>
+const void* field_bytes(const T& v) {
+  if constexpr (std::is_arithmetic_v<T>) return &v;
+  else return v.data();
+}
+template <class T>
+void* field_bytes(T& v) {
+  if constexpr (std::is_arithmetic_v<T>) return &v;
+  else return v.data();
+}
+
+template <int D>
+template <class Field>
+void Decomposition<D>::refresh(Field& field) const {
+  using T = typename Field::value_type;
+  std::vector<std::string> send(send_.size());
+  for (std::size_t r = 0; r < send_.size(); ++r) {
+    send[r].resize(send_[r].size() * sizeof(T));
+    for (std::size_t k = 0; k < send_[r].size(); ++k) std::memcpy(send[r].data() + k * sizeof(T), field_bytes(field[send_[r][k]]), sizeof(T));
+  }
+  const std::vector<std::string> got = comm_.exchange(send);
+  for (std::size_t r = 0; r < recv_.size(); ++r)
+    for (std::size_t k = 0; k < recv_[r].size(); ++k) std::memcpy(field_bytes(field[recv_[r][k]]), got[r].data() + k * sizeof(T), sizeof(T));
+}
+
+}  // namespace sc

@@ -1,0 +1,205 @@
+// One SPH scene decomposed over MPI ranks (solver/parallel/decomposition.hpp, docs/scaling.md):
+// `mpirun -n N sandcastle run` gives bitwise the one-process run (state checksum and final frame)
+// at 2 and 3 ranks while particles migrate and the slabs are rebalanced, a checkpoint of 3 ranks
+// resumes on 2 with the uninterrupted checksum, `bench` reports the halo's share, and a case with a
+// feature that is not decomposed stops with exit code 2 before it starts.
+#include <boost/test/unit_test.hpp>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "io/json_reader.hpp"
+#include "support/process.hpp"
+#include "sweep.hpp"
+
+using namespace sc;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* mpirun = "/usr/bin/mpirun";
+const std::string cases = std::string(SANDCASTLE_SOURCE_DIR) + "/cases";
+
+bool have_mpi() {
+  if (sweep_has_mpi() && fs::exists(mpirun)) return true;
+  BOOST_TEST_MESSAGE("skipped: built without MPI or no " << mpirun);
+  return false;
+}
+
+/// `sandcastle args...` as one process (ranks = 1) or under `mpirun -n ranks`, one thread per rank.
+test::ProcessResult sandcastle(int ranks, std::vector<std::string> args) {
+  if (ranks > 1) args.insert(args.begin(), {"--oversubscribe", "-n", std::to_string(ranks), SANDCASTLE_BINARY});
+  test::Child child(args,
+                    {"OMP_NUM_THREADS=1", "OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
+                     "ASAN_OPTIONS=detect_leaks=0"},
+                    ranks > 1 ? mpirun : SANDCASTLE_BINARY);
+  test::ProcessResult r = child.wait(300.0);
+  BOOST_TEST_INFO(ranks << " ranks: " << r.err);
+  BOOST_TEST_REQUIRE(!r.timed_out);
+  return r;
+}
+
+/// The case `name` of cases/ ending at `end` [s] instead (its start-up relaxation and the
+/// observer's averaging window shortened to fit), written to a fresh folder; its path.
+std::string shortened_case(const std::string& name, double end) {
+  json c = read_json_file(cases + "/" + name + "/case.json");
+  c["time"]["end"] = end;
+  if (c["time"].value("relax_until", 0.0) >= end) c["time"]["relax_until"] = end / 2;
+  if (c["validation"].value("average_time", 0.0) >= end) c["validation"]["average_time"] = end / 3;
+  for (auto& [tier, t] : c["tiers"].items()) t.erase("end_time");
+  const std::string dir = test::fresh_path(name);
+  fs::create_directories(dir);
+  std::ofstream(dir + "/case.json") << c.dump();
+  return dir + "/case.json";
+}
+
+std::string match(const std::string& text, const std::string& pattern) {
+  std::smatch m;
+  return std::regex_search(text, m, std::regex(pattern)) ? m[1].str() : "";
+}
+
+/// What `run` printed: the checksum, and the decomposition's rebalances and migrated particles.
+struct Printed {
+  std::string checksum;
+  long rebalances = -1, migrated = -1;
+};
+Printed printed(const test::ProcessResult& r) {
+  Printed p;
+  p.checksum = match(r.out, "checksum ([0-9a-f]{16})");
+  const std::string rebalances = match(r.out, "decomposed over \\d+ ranks: (\\d+) rebalances");
+  const std::string migrated = match(r.out, "rebalances, (\\d+) particles migrated");
+  if (!rebalances.empty()) p.rebalances = std::stol(rebalances);
+  if (!migrated.empty()) p.migrated = std::stol(migrated);
+  return p;
+}
+
+/// Runs the case file over 1, 2 and 3 ranks and checks that every decomposed run ends in the
+/// one-process state: the same checksum and the same final frame (every particle field, in the
+/// one-process order), with the same exit code. Returns what each printed (1, 2, 3 ranks).
+std::vector<Printed> runs_agree(const std::string& case_file) {
+  const std::string root = test::fresh_path("decomposed");
+  std::vector<Printed> out;
+  std::string frame;
+  int code = -1;
+  for (const int ranks : {1, 2, 3}) {
+    const std::string dir = root + "/n" + std::to_string(ranks);
+    const test::ProcessResult r = sandcastle(ranks, {"run", case_file, "--out", dir});
+    out.push_back(printed(r));
+    BOOST_TEST_INFO(ranks << " ranks: " << r.out << r.err);
+    BOOST_TEST_REQUIRE(out.back().checksum.size() == 16u);
+    const std::string final_frame = test::read_text(dir + "/final.vtu");
+    if (ranks == 1) {
+      frame = final_frame;
+      code = r.exit_code;
+      continue;
+    }
+    BOOST_TEST(r.exit_code == code);
+    BOOST_TEST(out.back().checksum == out.front().checksum);
+    BOOST_TEST((final_frame == frame), "final.vtu differs from the one-process run's");
+  }
+  fs::remove_all(root);
+  return out;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_SUITE(decomposition)
+
+// The water column at rest, its start-up (0.3 s, about 2,300 steps with the CFL step): the
+// decomposed runs end bitwise where the one process ends.
+BOOST_AUTO_TEST_CASE(hydrostatic_over_2_and_3_ranks_is_the_one_process_run) {
+  if (!have_mpi()) return;
+  const std::string file = shortened_case("hydrostatic", 0.3);
+  const std::vector<Printed> p = runs_agree(file);
+  BOOST_TEST(p[1].rebalances >= 1);
+  fs::remove_all(fs::path(file).parent_path());
+}
+
+// The collapsing column (0.1 s): particles cross the slabs' borders and the borders move, and the
+// decomposed runs still end bitwise where the one process ends.
+BOOST_AUTO_TEST_CASE(dam_break_over_2_and_3_ranks_migrates_rebalances_and_is_the_one_process_run) {
+  if (!have_mpi()) return;
+  const std::string file = shortened_case("dam_break_square", 0.1);
+  const std::vector<Printed> p = runs_agree(file);
+  for (const std::size_t k : {1u, 2u}) {
+    BOOST_TEST_INFO(k + 1 << " ranks");
+    BOOST_TEST(p[k].migrated > 0);
+    BOOST_TEST(p[k].rebalances > 1);  // the first slabs, then at least one move of a border
+  }
+  fs::remove_all(fs::path(file).parent_path());
+}
+
+// A checkpoint written by 3 ranks resumes on 2 (and on 1) with the checksum of the uninterrupted run.
+BOOST_AUTO_TEST_CASE(checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum) {
+  if (!have_mpi()) return;
+  const std::string file = shortened_case("dam_break_square", 0.06);
+  const std::string root = test::fresh_path("decomposed_restart");
+  const test::ProcessResult straight = sandcastle(1, {"run", file, "--out", root + "/straight"});
+  const test::ProcessResult three = sandcastle(3, {"run", file, "--out", root + "/three", "--checkpoint-every", "200"});
+  BOOST_TEST(printed(three).checksum == printed(straight).checksum);
+  const std::string ckpt = root + "/three/checkpoint_00000200.ckpt";
+  BOOST_TEST_REQUIRE(fs::exists(ckpt));
+  for (const int ranks : {2, 1}) {
+    const test::ProcessResult resumed = sandcastle(ranks, {"run", file, "--out", root + "/resumed" + std::to_string(ranks), "--resume", ckpt});
+    BOOST_TEST_INFO("resumed on " << ranks << ": " << resumed.out);
+    BOOST_TEST(printed(resumed).checksum == printed(straight).checksum);
+  }
+  fs::remove_all(root);
+  fs::remove_all(fs::path(file).parent_path());
+}
+
+// A run that blows up over 2 ranks stops as the one process does: exit code 3, the same diagnostic
+// (step, time, the particle's one-process index, its phase, the field) and the same last good state.
+BOOST_AUTO_TEST_CASE(a_blow_up_over_2_ranks_is_reported_as_in_one_process) {
+  if (!have_mpi()) return;
+  const std::string file = std::string(SANDCASTLE_SOURCE_DIR) + "/tests/reliability/unstable_step.json";
+  const std::string root = test::fresh_path("decomposed_blowup");
+  std::vector<std::string> diagnostics, last_good;
+  for (const int ranks : {1, 2}) {
+    const std::string out = root + "/n" + std::to_string(ranks);
+    const test::ProcessResult r = sandcastle(ranks, {"run", file, "--out", out});
+    BOOST_TEST(r.exit_code == 3);
+    diagnostics.push_back(match(r.err, "(blow-up at step [^;]*);"));
+    last_good.push_back(test::read_text(out + "/last_good.vtu"));
+  }
+  BOOST_TEST(!diagnostics[0].empty());
+  BOOST_TEST(diagnostics[1] == diagnostics[0]);
+  BOOST_TEST((last_good[1] == last_good[0]), "last_good.vtu differs from the one-process run's");
+  fs::remove_all(root);
+}
+
+// `bench` of a decomposed scene: rank 0 writes bench.json with the one-process checksum, the ranks,
+// the halo stage and its share of the step.
+BOOST_AUTO_TEST_CASE(bench_over_2_ranks_reports_the_halo_share_and_the_one_process_checksum) {
+  if (!have_mpi()) return;
+  const std::string root = test::fresh_path("decomposed_bench");
+  std::vector<json> entries;
+  for (const int ranks : {1, 2}) {
+    const std::string out = root + "/n" + std::to_string(ranks);
+    const test::ProcessResult r = sandcastle(ranks, {"bench", "--scene", "dam_break_square", "--steps", "20", "--out", out});
+    BOOST_TEST_REQUIRE(r.exit_code == 0);
+    entries.push_back(read_json_file(out + "/bench.json").at("scenes").at(0));
+  }
+  BOOST_TEST(entries[1]["checksum"] == entries[0]["checksum"]);
+  BOOST_TEST(entries[1]["ranks"] == 2);
+  BOOST_TEST(!entries[0].contains("ranks"));
+  const double share = entries[1]["halo_share"];
+  BOOST_TEST((share > 0.0 && share < 1.0));
+  BOOST_TEST(entries[1]["stage_ms_per_step"]["halo"].get<double>() > 0.0);
+  fs::remove_all(root);
+}
+
+// Sand is not decomposed yet: over 2 ranks the run stops before it starts, with exit code 2 and a
+// message naming the case file, the block and the feature; nothing is written.
+BOOST_AUTO_TEST_CASE(a_case_with_sand_over_2_ranks_stops_with_exit_code_2) {
+  if (!have_mpi()) return;
+  const std::string out = test::fresh_path("decomposed_sand");
+  const test::ProcessResult r = sandcastle(2, {"run", cases + "/column_collapse/case.json", "--out", out});
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.err.find("/blocks/0") != std::string::npos);
+  BOOST_TEST(r.err.find("sand") != std::string::npos);
+  BOOST_TEST(r.err.find("not decomposed") != std::string::npos);
+  BOOST_TEST(!fs::exists(out));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
