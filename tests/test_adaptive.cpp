@@ -20,6 +20,7 @@ namespace {
 template <int D>
 std::size_t add_particle(ParticleSet<D>& ps, double mass, const Vec<D>& x, const Vec<D>& v,
                          double absorbed, double saturation, std::uint8_t level = 1) {
+  ps.add_porous_fields();
   const std::size_t i = ps.append();
   ps.level[i] = level;
   ps.x[i] = x; ps.v[i] = v; ps.m[i] = mass; ps.rho0[i] = 1000.0; ps.rho[i] = 1010.0 + mass;

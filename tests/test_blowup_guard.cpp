@@ -42,6 +42,9 @@ void check_guard(const std::string& path, int steps) {
     sim.step();
     BOOST_TEST_CONTEXT(path << " step " << k + 1) BOOST_TEST(same_bits<D>(sim.last_good(), before));
   }
+  // Only a porous scene carries the porous-flow fields, through splits, merges and emissions.
+  BOOST_TEST(sim.particles().has_porous_fields() == spec.porous.has_value());
+  BOOST_TEST(sim.last_good().has_porous_fields() == spec.porous.has_value());
 }
 
 }  // namespace

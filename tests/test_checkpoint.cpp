@@ -10,9 +10,11 @@ using namespace sc;
 
 namespace {
 
-/// Particles whose every field (whatever fields ParticleSet has) holds a distinct byte pattern.
-ParticleSet<2> patterned_particles(std::size_t n) {
+/// Particles whose every field (whatever fields ParticleSet has) holds a distinct byte pattern; with
+/// or without the porous-flow fields.
+ParticleSet<2> patterned_particles(std::size_t n, bool porous = true) {
   ParticleSet<2> ps;
+  if (porous) ps.add_porous_fields();
   for (std::size_t i = 0; i < n; ++i) ps.append();
   unsigned char next = 1;
   ps.visit_fields([&](std::string_view, auto& field) {
@@ -38,19 +40,25 @@ CheckpointState sample_state() {
 BOOST_AUTO_TEST_SUITE(checkpoint)
 
 BOOST_AUTO_TEST_CASE(round_trip_keeps_every_field_and_the_state_bitwise) {
-  const ParticleSet<2> ps = patterned_particles(17);
   const CheckpointState state = sample_state();
-  const Checkpoint c = parse_checkpoint(checkpoint_document(ps, state), "mem.ckpt");
-  const ParticleSet<2> back = restore_particles<2>(c);
-  std::vector<std::string> written, restored;
   auto collect = [](std::vector<std::string>& out) {
     return [&out](std::string_view, const auto& field) {
       out.emplace_back(reinterpret_cast<const char*>(field.data()), field.size() * sizeof(field[0]));
     };
   };
-  ps.visit_fields(collect(written));
-  back.visit_fields(collect(restored));
-  BOOST_TEST(written == restored);
+  for (const bool porous : {true, false}) {  // a porous scene's set and one without those fields
+    const ParticleSet<2> ps = patterned_particles(17, porous);
+    const ParticleSet<2> back = restore_particles<2>(parse_checkpoint(checkpoint_document(ps, state), "mem.ckpt"));
+    std::vector<std::string> written, restored;
+    ps.visit_fields(collect(written));
+    back.visit_fields(collect(restored));
+    BOOST_TEST(back.has_porous_fields() == porous);
+    BOOST_TEST(written == restored);
+    BOOST_TEST(written.size() == (porous ? 23u : 16u));  // every field, or all but the seven porous ones
+  }
+  const ParticleSet<2> ps = patterned_particles(17);
+  const Checkpoint c = parse_checkpoint(checkpoint_document(ps, state), "mem.ckpt");
+  const ParticleSet<2> back = restore_particles<2>(c);
   BOOST_TEST(back.next_id() == ps.next_id());
   BOOST_TEST(std::memcmp(&c.state.time, &state.time, sizeof(double)) == 0);
   BOOST_TEST(std::memcmp(&c.state.last_dt, &state.last_dt, sizeof(double)) == 0);

@@ -18,6 +18,7 @@ ParticleSet<D> random_particles(unsigned seed, std::size_t n, bool walls, double
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> pos(0.0, 1.0), radius(h_min, h_max);
   ParticleSet<D> ps;
+  if (walls) ps.add_porous_fields();
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = ps.append();
     for (int d = 0; d < D; ++d) ps.x[i][d] = pos(rng);

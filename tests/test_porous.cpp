@@ -51,6 +51,7 @@ PorousParams test_params() {
 /// Adds lattice particles of a phase in [lo, hi) at spacing kDx, support 2 kDx, water lattice mass;
 /// porous ones at saturation S0.
 void add_block(ParticleSet<2>& ps, const PorousParams& p, Phase phase, Vec<2> lo, Vec<2> hi, double S0) {
+  ps.add_porous_fields();
   for (const auto& x : lattice_points<2>(lo, hi, kDx)) {
     const std::size_t i = ps.append();
     ps.x[i] = x;
@@ -725,6 +726,7 @@ BOOST_AUTO_TEST_CASE(wet_sand_friction_uses_the_effective_pressure_eq_32) {
   VecArrayOf<2> predicted;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, dry, predicted);
   update_sand_state(ps, nb, sand, 9.81, 1e-4, dry_kp, predicted, 1.0, 3000.0);
+  ps.add_porous_fields();
   for (auto& S : ps.saturation) S = 0.5;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, wet, predicted, 1.0, 3000.0);
   BOOST_TEST(dry[kCentre].norm() > 0.0);
@@ -868,6 +870,7 @@ BOOST_AUTO_TEST_CASE(saturated_sand_loses_the_cohesion_that_held_it_rigid) {
   sand.cohesion = 1e6;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, stress, predicted);
   BOOST_TEST(ps.rigid[kCentre] == 1);  // dry and cohesive: rigid
+  ps.add_porous_fields();
   for (auto& S : ps.saturation) S = 1.0;
   update_sand_state(ps, nb, sand, 9.81, 1e-4, stress, predicted);
   BOOST_TEST(ps.rigid[kCentre] == 0);  // saturated: the cohesion is gone

@@ -482,6 +482,7 @@ BOOST_AUTO_TEST_CASE(partial_water_is_held_off_solid_walls_only) {
     ps.rho[w] = ps.rho0[w] = 1000.0;
     ps.phase[w] = static_cast<std::uint8_t>(Phase::Boundary);
   }
+  ps.add_porous_fields();
   ps.porosity[2] = 0.4;
   for (const Vec<2>& x : {Vec<2>(0.0, 0.003), Vec<2>(1.0, 0.003), Vec<2>(2.0, 0.003)}) {
     const std::size_t i = ps.append();

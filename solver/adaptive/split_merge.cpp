@@ -36,9 +36,11 @@ constexpr std::array<std::pair<std::string_view, FieldRule>, 23> kRules{{
                          " does not apply to the type of field '" + std::string(name) + "'");
 }
 
-// Calls f(name, to_field, from_field) for every field, matched by name and type.
+// Calls f(name, to_field, from_field) for every field, matched by name and type; `to` first gets
+// the porous fields if `from` has them.
 template <int D, class F>
 void for_each_field_pair(const ParticleSet<D>& from, ParticleSet<D>& to, F&& f) {
+  if (from.has_porous_fields()) to.add_porous_fields();
   to.visit_fields([&](std::string_view name, auto& dst) {
     from.visit_fields([&](std::string_view other, auto& src) {
       if constexpr (std::is_same_v<std::decay_t<decltype(dst)>, std::decay_t<decltype(src)>>)

@@ -13,13 +13,22 @@ template <int D>
 std::size_t ParticleSet<D>::append() {
   visit_fields([](std::string_view, auto& field) { field.emplace_back(); });
   const std::size_t i = size() - 1;
-  x[i].setZero(); v[i].setZero(); force[i].setZero(); pore_velocity[i].setZero();
+  x[i].setZero(); v[i].setZero(); force[i].setZero();
+  if (porous_fields_) pore_velocity[i].setZero();
   m[i] = 0.0; h[i] = 0.0; rho[i] = 1.0; rho0[i] = 1.0; p[i] = 0.0;
   phase[i] = static_cast<std::uint8_t>(Phase::Water);
   rough[i] = 0;
   id[i] = next_id_++;
   ++layout_;
   return i;
+}
+
+template <int D>
+void ParticleSet<D>::add_porous_fields() {
+  if (porous_fields_) return;
+  porous_fields_ = true;
+  for (auto* f : {&absorbed, &emit_store, &saturation, &porosity, &capillary, &pore_pressure}) f->assign(size(), 0.0);
+  pore_velocity.assign(size(), V::Zero());
 }
 
 template <int D>
@@ -33,6 +42,7 @@ ParticleSet<D>& ParticleSet<D>::additions() {
   if (additions_.empty()) {
     additions_.emplace_back();
     additions_.front().next_id_ = next_id_;
+    if (porous_fields_) additions_.front().add_porous_fields();
   }
   return additions_.front();
 }
@@ -97,6 +107,11 @@ void ParticleSet<D>::truncate(std::size_t n) {
 
 template <int D>
 void ParticleSet<D>::copy_from(const ParticleSet& other) {
+  if (porous_fields_ != other.porous_fields_) {  // take other's fields, then copy them below
+    ParticleSet fresh;
+    if (other.porous_fields_) fresh.add_porous_fields();
+    *this = std::move(fresh);
+  }
   visit_fields_with(other, [](auto& field, const auto& src) { field.resize(src.size()); });
   // One parallel region for all fields (not one per field): each thread copies its share of
   // every field, without a barrier between the fields.

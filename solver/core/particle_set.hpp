@@ -52,7 +52,7 @@ class ParticleSet {
   std::vector<std::uint8_t> rigid;   ///< sand: 1 = does not yield (eq 10), 0 = flowing
   std::vector<std::int32_t> cluster; ///< sand: rigid cluster number + 1 of this step, 0 = none
   std::vector<double> strain_rate;   ///< sand: |D|_F [1/s] (eq 9)
-  // --- porous flow (solver/porous/) ---------------------------------------------------------
+  // --- porous flow (solver/porous/): held only when has_porous_fields(), else empty -----------
   std::vector<double> absorbed;      ///< porous: absorbed water m_p [kg] (eq 21)
   std::vector<double> emit_store;    ///< porous: absorbed water waiting to leave as a new water particle [kg]
   std::vector<double> saturation;    ///< porous: S (eq 21)
@@ -68,6 +68,7 @@ class ParticleSet {
     f("pressure", p); f("phase", phase); f("rough", rough); f("id", id); f("density_offset", density_offset);
     f("level", level);
     f("rigid", rigid); f("cluster", cluster); f("strain_rate", strain_rate);
+    if (!porous_fields_) return;
     f("absorbed_water", absorbed); f("emit_store", emit_store); f("saturation", saturation);
     f("porosity", porosity); f("capillary_potential", capillary); f("pore_pressure", pore_pressure);
     f("pore_velocity", pore_velocity);
@@ -76,11 +77,22 @@ class ParticleSet {
   void visit_fields(F&& f) const { const_cast<ParticleSet*>(this)->visit_fields(f); }
 
   std::size_t size() const { return x.size(); }
+  /// Whether the set holds the porous-flow fields (absorbed ... pore_velocity). Only scenes with
+  /// porous flow do (scene/scene_builder.cpp); elsewhere the fields stay empty and visit_fields
+  /// leaves them out, so a water or dry-sand scene does not carry (twice, with the blow-up guard's
+  /// copy) seven fields that are zero for every particle.
+  bool has_porous_fields() const { return porous_fields_; }
+  /// Holds the porous-flow fields from now on, zero for every particle already in the set.
+  void add_porous_fields();
+  /// Porosity φ of particle i (eq 24): 0 in a set without porous fields.
+  double porosity_of(std::size_t i) const { return porous_fields_ ? porosity[i] : 0.0; }
+  /// Saturation S of particle i (eq 21): 0 in a set without porous fields.
+  double saturation_of(std::size_t i) const { return porous_fields_ ? saturation[i] : 0.0; }
   Phase phase_of(std::size_t i) const { return static_cast<Phase>(phase[i]); }
   bool moves(std::size_t i) const { return phase_of(i) != Phase::Boundary; }
   /// A fixed wall particle outside the porous flow: it only acts with moving or porous particles,
   /// so the neighbour search leaves out pairs of two inert particles.
-  bool inert(std::size_t i) const { return phase_of(i) == Phase::Boundary && !(porosity[i] > 0.0); }
+  bool inert(std::size_t i) const { return phase_of(i) == Phase::Boundary && !(porosity_of(i) > 0.0); }
   double volume(std::size_t i) const { return m[i] / rho[i]; }
 
   /// Appends one particle with every field zero (rest density and density 1 to keep V finite)
@@ -124,6 +136,7 @@ class ParticleSet {
   std::vector<ParticleSet> additions_;  // zero or one element (a class cannot hold itself)
   std::int64_t next_id_ = 0;
   std::uint64_t layout_ = 0;
+  bool porous_fields_ = false;
 };
 
 std::string_view phase_name(Phase p);

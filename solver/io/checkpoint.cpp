@@ -1,5 +1,6 @@
 #include "io/checkpoint.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cstring>
 #include <fstream>
@@ -168,6 +169,10 @@ ParticleSet<D> restore_particles(const Checkpoint& c) {
     throw InputError(c.file, "/dimension", "checkpoint is " + std::to_string(c.state.dimension) +
                                                "-D but the case is " + std::to_string(D) + "-D");
   ParticleSet<D> ps;
+  const auto holds = [&c](const std::string& block) {
+    return std::ranges::any_of(c.blocks, [&](const CheckpointBlock& b) { return b.name == block; });
+  };
+  if (holds("particle/porosity")) ps.add_porous_fields();  // a porous scene's (see has_porous_fields)
   std::size_t used = 0;
   ps.visit_fields([&](std::string_view name, auto& field) {
     using E = typename std::decay_t<decltype(field)>::value_type;

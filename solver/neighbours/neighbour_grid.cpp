@@ -17,10 +17,6 @@ inline bool are_neighbours(double r2, double hi, double hj) {
   return r2 <= hmax * hmax;
 }
 
-// Particles per chunk of the pair search: chunks are the unit of work sharing, fixed in size so the
-// result does not depend on the number of threads.
-constexpr std::size_t kChunk = 512;
-
 // Binning: particles are sorted in blocks of at least kSortBlock particles, one per thread, while
 // the slots are at most kSortSlotsPerParticle times the particles.
 constexpr std::size_t kSortBlock = 4096, kSortSlotsPerParticle = 4;
@@ -344,7 +340,7 @@ void NeighbourGrid<D>::find_pairs(const ParticleSet<D>& ps) {
   offset_.resize(n + 1);  // every entry is written below
   offset_[0] = 0;
   if (n == 0) {
-    index_.clear();
+    chunk_base_.assign(1, 0);
     return;
   }
   const auto chunks = static_cast<std::int64_t>((n + kChunk - 1) / kChunk);
@@ -365,12 +361,10 @@ void NeighbourGrid<D>::find_pairs(const ParticleSet<D>& ps) {
   chunk_base_.resize(chunks + 1);
   chunk_base_[0] = 0;
   for (std::int64_t c = 0; c < chunks; ++c) chunk_base_[c + 1] = chunk_base_[c] + chunk_used_[c];
-  index_.resize(chunk_base_[chunks]);  // every entry is overwritten below
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::size_t end = std::min(n, (c + 1) * kChunk);
     for (std::size_t i = c * kChunk; i < end; ++i) offset_[i + 1] += chunk_base_[c];
-    std::copy_n(chunk_lists_[c].begin(), chunk_used_[c], index_.begin() + chunk_base_[c]);
   }
 }
 

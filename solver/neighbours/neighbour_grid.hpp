@@ -2,9 +2,9 @@
 //
 // Particles i and j are neighbours when |x_i - x_j| <= max(h_i, h_j) (thesis §3.6 after Adams
 // 2007). The cell size is the largest support radius, so the 3^D cells around a particle's cell hold
-// all its neighbours. Lists are stored once per step in compressed rows (CSR) and shared by every
-// pass; each list is ordered by cell, then within a cell by (inert last, index), so it does not
-// depend on the number of threads. Pairs of two inert particles (ParticleSet::inert: fixed walls
+// all its neighbours. Lists are stored once per step in compressed rows (CSR, one buffer per chunk
+// of particles) and shared by every pass; each list is ordered by cell, then within a cell by
+// (inert last, index), so it does not depend on the number of threads. Pairs of two inert particles (ParticleSet::inert: fixed walls
 // outside the porous flow) are left out, as no pass uses them; so the list of an inert particle
 // holds only its non-inert neighbours, and every other list includes the particle itself.
 //
@@ -50,13 +50,16 @@ class NeighbourGrid {
   /// Bounds of the positions and largest support of the particles `which` (exact: any threads).
   static GridBounds<D> bounds(const ParticleSet<D>& ps, std::span<const std::uint32_t> which);
 
+  /// The list of particle i, in its chunk's buffer.
   std::span<const std::uint32_t> of(std::size_t i) const {
-    return {index_.data() + offset_[i], index_.data() + offset_[i + 1]};
+    const std::size_t c = i / kChunk;
+    const std::uint32_t* chunk = chunk_lists_[c].data();
+    return {chunk + (offset_[i] - chunk_base_[c]), chunk + (offset_[i + 1] - chunk_base_[c])};
   }
   /// Position of of(i) in the concatenation of all lists (for data kept per list entry).
   std::size_t list_start(std::size_t i) const { return offset_[i]; }
   std::size_t size() const { return offset_.empty() ? 0 : offset_.size() - 1; }
-  std::size_t total_pairs() const { return index_.size(); }
+  std::size_t total_pairs() const { return chunk_base_.empty() ? 0 : chunk_base_.back(); }
   /// A cache-friendly order for ParticleSet::permute, from the last bin(): the non-inert
   /// particles by cell, then the inert ones by cell (so the particles that move stay together).
   const std::vector<std::size_t>& storage_order();
@@ -74,10 +77,14 @@ class NeighbourGrid {
   void sort_by_slot(const ParticleSet<D>& ps);
   void mark_cells_near_moving();
 
+  // Particles per chunk of the pair search: chunks are the unit of work sharing, fixed in size so
+  // the lists do not depend on the number of threads. Each chunk's lists stay in its own buffer
+  // (no joined copy): offset_ holds positions in the concatenation of the chunks' used entries,
+  // chunk_base_ where each chunk starts in it.
+  static constexpr std::size_t kChunk = 512;
   std::vector<std::size_t> offset_;
-  std::vector<std::uint32_t> index_;
-  std::vector<std::vector<std::uint32_t>> chunk_lists_;  // per chunk of particles, joined into index_
-  std::vector<std::size_t> chunk_used_, chunk_base_;     // per chunk: entries used, start in index_
+  std::vector<std::vector<std::uint32_t>> chunk_lists_;  // per chunk of particles: its lists, then unused room
+  std::vector<std::size_t> chunk_used_, chunk_base_;     // per chunk: entries used, start in the concatenation
   // Particle indices ordered by (cell, inert, index), and one padding entry that the pair scan,
   // which tests candidates two at a time, may read but never lists.
   std::vector<std::uint32_t> sorted_;

@@ -541,7 +541,10 @@ template <int D>
 double total_water(const ParticleSet<D>& ps) {
   double sum = 0.0;
   for (std::size_t i = 0; i < ps.size(); ++i)
-    sum += ps.phase_of(i) == Phase::Water ? ps.m[i] : ps.absorbed[i] + ps.emit_store[i];
+    if (ps.phase_of(i) == Phase::Water)
+      sum += ps.m[i];
+    else if (ps.has_porous_fields())
+      sum += ps.absorbed[i] + ps.emit_store[i];
   return sum;
 }
 

@@ -43,6 +43,7 @@ void derive_porous(PorousParams& p, double dx, double h, double water_mass, kern
 
 template <int D>
 void init_porous(ParticleSet<D>& ps, const PorousParams& p) {
+  ps.add_porous_fields();
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (ps.phase_of(i) == Phase::Water) continue;
     ps.porosity[i] = p.porosity;

@@ -107,7 +107,7 @@ void append_cluster_wall_contacts(const ParticleSet<D>& ps, const NeighbourGrid<
   for (const auto i : members) {
     const double si = rest_spacing<D>(ps.m[i], ps.rho0[i]);
     for (const auto w : nb.of(i)) {
-      if (ps.phase_of(w) != Phase::Boundary || ps.porosity[w] != 0.0) continue;
+      if (ps.phase_of(w) != Phase::Boundary || ps.porosity_of(w) != 0.0) continue;
       const Vec<D> d = ps.x[i] - ps.x[w];
       const double r = d.norm();
       if (r <= 0.0) continue;

@@ -58,10 +58,10 @@ void update_sand_state(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const San
     if (!is_sand(ps.phase[i])) continue;
     const Mat<D> Dr = strain_rate<D>(velocity_gradient(ps, nb, i, &predicted));
     const double p = effective_pressure(granular_pressure(ps.p[i], ps.rho0[i], gravity, rest_spacing<D>(ps.m[i], ps.rho0[i])),
-                                        stress_scale, pore_stiffness, ps.saturation[i]);  // eq 32
+                                        stress_scale, pore_stiffness, ps.saturation_of(i));  // eq 32
     const double L = rigid_length(ps, i, sand);
     ps.strain_rate[i] = Dr.norm();
-    const double c = sand.wet_cohesion_loss ? wet_cohesion(sand.cohesion, ps.saturation[i]) : sand.cohesion;
+    const double c = sand.wet_cohesion_loss ? wet_cohesion(sand.cohesion, ps.saturation_of(i)) : sand.cohesion;
     ps.rigid[i] = is_rigid<D>(rigid_stress<D>(Dr, ps.rho[i], L, dt), p, sin_phi, c, strength) ? 1 : 0;
     if (!ps.rigid[i] || !sand.rigid_clusters) stress[i] = -frictional_stress<D>(Dr, p, sin_phi);
   }
@@ -157,7 +157,7 @@ void add_partial_water_wall_contact(ParticleSet<D>& ps, const NeighbourGrid<D>& 
     const double spacing_i = rest_spacing<D>(ps.m[i], ps.rho0[i]);
     Vec<D> f = Vec<D>::Zero();
     for (const auto j : nb.of(i)) {
-      if (ps.phase_of(j) != Phase::Boundary || ps.porosity[j] != 0.0) continue;
+      if (ps.phase_of(j) != Phase::Boundary || ps.porosity_of(j) != 0.0) continue;
       const Vec<D> d = ps.x[i] - ps.x[j];
       f += pair_contact_force(ps, i, spacing_i, j, d, d.norm(), sand, sound_speed, dt);
     }
