@@ -1,8 +1,9 @@
 // One SPH scene decomposed over MPI ranks (solver/parallel/decomposition.hpp, docs/scaling.md):
 // `mpirun -n N sandcastle run` gives bitwise the one-process run (state checksum and final frame)
 // at 2 and 3 ranks while particles migrate and the slabs are rebalanced, a checkpoint of 3 ranks
-// resumes on 2 with the uninterrupted checksum, `bench` reports the halo's share, and a case with a
-// feature that is not decomposed stops with exit code 2 before it starts.
+// resumes on 2 with the uninterrupted checksum, `bench` reports the halo's share, a file rank 0
+// cannot write ends every rank with the error, and a case with a feature that is not decomposed
+// stops with exit code 2 before it starts.
 #include <boost/test/unit_test.hpp>
 #include <filesystem>
 #include <fstream>
@@ -26,14 +27,15 @@ bool have_mpi() {
   return false;
 }
 
-/// `sandcastle args...` as one process (ranks = 1) or under `mpirun -n ranks`, one thread per rank.
-test::ProcessResult sandcastle(int ranks, std::vector<std::string> args) {
+/// `sandcastle args...` as one process (ranks = 1) or under `mpirun -n ranks`, one thread per rank,
+/// given `timeout` seconds.
+test::ProcessResult sandcastle(int ranks, std::vector<std::string> args, double timeout = 300.0) {
   if (ranks > 1) args.insert(args.begin(), {"--oversubscribe", "-n", std::to_string(ranks), SANDCASTLE_BINARY});
   test::Child child(args,
                     {"OMP_NUM_THREADS=1", "OMPI_ALLOW_RUN_AS_ROOT=1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1",
                      "ASAN_OPTIONS=detect_leaks=0"},
                     ranks > 1 ? mpirun : SANDCASTLE_BINARY);
-  test::ProcessResult r = child.wait(300.0);
+  test::ProcessResult r = child.wait(timeout);
   BOOST_TEST_INFO(ranks << " ranks: " << r.err);
   BOOST_TEST_REQUIRE(!r.timed_out);
   return r;
@@ -56,6 +58,12 @@ std::string shortened_case(const std::string& name, double end) {
 std::string match(const std::string& text, const std::string& pattern) {
   std::smatch m;
   return std::regex_search(text, m, std::regex(pattern)) ? m[1].str() : "";
+}
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
 }
 
 /// What `run` printed: the checksum, and the decomposition's rebalances and migrated particles.
@@ -86,6 +94,7 @@ std::vector<Printed> runs_agree(const std::string& case_file) {
     const test::ProcessResult r = sandcastle(ranks, {"run", case_file, "--out", dir});
     out.push_back(printed(r));
     BOOST_TEST_INFO(ranks << " ranks: " << r.out << r.err);
+    BOOST_TEST(count(r.err, "  done\n") == 1u);  // the progress lines are rank 0's alone
     BOOST_TEST_REQUIRE(out.back().checksum.size() == 16u);
     const std::string final_frame = test::read_text(dir + "/final.vtu");
     if (ranks == 1) {
@@ -166,6 +175,27 @@ BOOST_AUTO_TEST_CASE(a_blow_up_over_2_ranks_is_reported_as_in_one_process) {
   BOOST_TEST(diagnostics[1] == diagnostics[0]);
   BOOST_TEST((last_good[1] == last_good[0]), "last_good.vtu differs from the one-process run's");
   fs::remove_all(root);
+}
+
+// A file rank 0 cannot write, at the start (the output folder) or in the middle of the run (the
+// second frame, where a folder of that name stands), ends every rank promptly, not only rank 0:
+// exit code 4 as in one process, the error told once, naming the rank and the file.
+BOOST_AUTO_TEST_CASE(a_file_rank_0_cannot_write_ends_every_rank_with_the_error) {
+  if (!have_mpi()) return;
+  const std::string file = shortened_case("dam_break_square", 0.03);
+  const std::string out = test::fresh_path("decomposed_unwritable");
+  fs::create_directories(out + "/frame_00001.vtu");
+  for (const std::string& dir : {std::string("/dev/null/out"), out}) {
+    BOOST_TEST_INFO("--out " << dir);
+    const test::ProcessResult r = sandcastle(2, {"run", file, "--out", dir}, 60.0);
+    BOOST_TEST(r.exit_code == 4);
+    BOOST_TEST(count(r.err, "error: rank 0: ") == 1u);
+    BOOST_TEST(r.err.find(dir == out ? "frame_00001.vtu" : "/dev/null/out") != std::string::npos);
+  }
+  BOOST_TEST(fs::exists(out + "/frame_00000.vtu"));
+  BOOST_TEST(!fs::exists(out + "/final.vtu"));
+  fs::remove_all(out);
+  fs::remove_all(fs::path(file).parent_path());
 }
 
 // `bench` of a decomposed scene: rank 0 writes bench.json with the one-process checksum, the ranks,

@@ -1,4 +1,4 @@
-// ParticleSet: queued removal and addition in a stable order, checksums.
+// ParticleSet: queued removal and addition in a stable order, checksums, layouts.
 #include <boost/test/unit_test.hpp>
 
 #include "core/particle_set.hpp"
@@ -52,6 +52,32 @@ BOOST_AUTO_TEST_CASE(copy_from_equals_assignment) {
   BOOST_TEST(b.compact() == c.compact());  // the queued removal and addition were copied
   BOOST_TEST(b.size() == c.size());
   BOOST_TEST(b.checksum() == c.checksum());
+}
+
+// A halo appended and truncated again gives the set back its layout (the blow-up guard of a
+// decomposed run then refreshes its copy); a reorder does not, and no layout value comes back for
+// another order of particles.
+BOOST_AUTO_TEST_CASE(truncating_what_was_appended_restores_the_layout) {
+  ParticleSet<2> ps;
+  for (int k = 0; k < 4; ++k) ps.x[ps.append()] = Vec<2>(k, 0);
+  const std::uint64_t own = ps.layout();
+  for (int k = 0; k < 2; ++k) ps.additions().append();
+  ps.compact();
+  const std::uint64_t with_halo = ps.layout();
+  BOOST_TEST(with_halo != own);
+  ps.truncate(4);
+  BOOST_TEST(ps.layout() == own);
+  ps.additions().append();
+  ps.compact();
+  BOOST_TEST(ps.layout() != with_halo);  // another halo, another layout
+  ps.truncate(3);  // not where the appends began
+  BOOST_TEST(ps.layout() != own);
+  const std::uint64_t three = ps.layout();
+  ps.additions().append();
+  ps.compact();
+  ps.permute({0, 2, 1, 3});
+  ps.truncate(3);  // reordered since: a new layout
+  BOOST_TEST(ps.layout() != three);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -117,7 +117,8 @@ json bench_scene(const CaseSpec& spec, double dx, long steps, bool decompose) {
   const int ranks = Comm::world().size();
   const auto cores = static_cast<double>(omp_get_max_threads()) * (decompose ? ranks : 1);
   std::vector<double> ms;
-  Progress progress(spec.name, steps * spec.dt_max);
+  const bool shown = !decompose || Comm::world().rank() == 0;
+  Progress progress(spec.name, steps * spec.dt_max, shown ? Progress::Shown::yes : Progress::Shown::no);
   const double t_start = sim.time();
   const auto start = std::chrono::steady_clock::now();
   for (long k = 0; k < steps; ++k) {
@@ -276,7 +277,7 @@ int bench(const BenchOptions& opt) {
       if (spec.adaptive) add_uniform_comparison(spec, dx, steps, entry);
       entries.push_back(entry);
     } catch (const BlowUpError& e) {
-      std::cerr << "error: " << name << ": " << e.what() << "\n";
+      if (writer) std::cerr << "error: " << name << ": " << e.what() << "\n";
       entries.push_back({{"scene", name}, {"error", e.what()}});
       exit_code = kBlowUp;
     }

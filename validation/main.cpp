@@ -1,16 +1,19 @@
 // The `sandcastle` command: run one case, validate the suite, render a run's frames. Exit codes: 0
 // success, 1 a case failed its gate, 2 bad input (file, JSON path and rule on stderr), 3 the
-// simulation blew up, 4 a program `render` needs is missing or failed.
+// simulation blew up, 4 an unexpected internal error, 5 a program `render` needs is missing or
+// failed. Over MPI ranks, an error on one rank of a scene is told once, naming the rank.
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iostream>
 
 #include "baseline.hpp"
 #include "compare.hpp"
+#include "core/errors.hpp"
 #include "data_root.hpp"
 #include "io/atomic_file.hpp"
 #include "method/registry.hpp"
 #include "bench.hpp"
+#include "parallel/comm.hpp"
 #include "render/render.hpp"
 #include "report.hpp"
 #include "runner.hpp"
@@ -46,12 +49,16 @@ int run_command(const std::string& case_file, const std::string& out_dir, const 
   settings.resume_from = resume_from;
   settings.decompose = sc::sweep_ranks() > 1;
   const sc::RunResult r = sc::run_simulation(spec, dx, settings);
-  if (sc::sweep_rank() != 0) return r.exit_code;  // rank 0 reports
+  const sc::Comm ranks = settings.decompose ? sc::Comm::world() : sc::Comm();
+  if (r.status != "error")  // every rank has the same status
+    sc::run_agreed(ranks, [&] {
+      if (ranks.rank() == 0) sc::write_series_file(out_dir + "/series.json", spec.name, r.observed);
+    });
+  if (ranks.rank() != 0) return r.exit_code;  // rank 0 reports
   if (r.status == "error") {
     std::cerr << "error: " << r.message << "\n";
     return r.exit_code;
   }
-  sc::write_series_file(out_dir + "/series.json", spec.name, r.observed);
   std::cout << spec.name << ": " << r.particles << " particles, " << r.steps << " steps, " << r.wall_seconds
             << " s, checksum " << r.checksum << "\n";
   if (const auto& a = r.decomposition)
@@ -85,6 +92,16 @@ void add_methods_option(CLI::App* app, std::vector<std::string>& methods) {
 }
 
 }  // namespace
+
+/// The exit code of an error on one rank of a scene over ranks: the one its kind gives in one process.
+int exit_code_of(sc::RankError::Kind kind) {
+  switch (kind) {
+    case sc::RankError::Kind::Input: return sc::kBadInput;
+    case sc::RankError::Kind::BlowUp: return sc::kBlowUp;
+    case sc::RankError::Kind::Other: return sc::kInternalError;
+  }
+  return sc::kInternalError;
+}
 
 /// `validate` spreads its cases over MPI ranks, `run` and `bench` decompose one scene over them; any
 /// other command under `mpirun -n N` (N > 1) would run N copies writing the same files, so it stops
@@ -221,11 +238,12 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : sc::kBadInput;
   }
+  bool one_scene_over_ranks = false;  // `run` or `bench` decomposing a scene over the ranks
   try {
     sc::set_data_root(root);
     if (bopt.out_dir.empty()) bopt.out_dir = sc::data_path("reports/baseline-run");
-    if (sweep_ranks_guard(val->parsed() || run->parsed() || (bench->parsed() && !benchopt.probe && !benchopt.surface)))
-      return sc::kBadInput;
+    one_scene_over_ranks = sc::sweep_ranks() > 1 && (run->parsed() || (bench->parsed() && !benchopt.probe && !benchopt.surface));
+    if (sweep_ranks_guard(val->parsed() || one_scene_over_ranks)) return sc::kBadInput;
     if (*run)
       return run_command(case_file, run_out, run_tier, spacing, checkpoint_every, resume_from, run_method, max_particles,
                          run_surfaces);
@@ -234,11 +252,20 @@ int main(int argc, char** argv) {
     if (*bench) return sc::bench(benchopt);
     if (*rnd) return sc::render::render_run(ropt);
     return sc::validate(vopt);
+  } catch (const sc::RankError& e) {  // known to every rank of one scene: rank 0 tells
+    if (sc::sweep_rank() == 0) std::cerr << "error: " << e.what() << "\n";
+    return exit_code_of(e.kind());
   } catch (const sc::InputError& e) {
     if (val->parsed() || sc::sweep_rank() == 0) std::cerr << "error: " << e.what() << "\n";  // one scene: every rank says the same
     return sc::kBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    return sc::kInternalError;
+    if (!one_scene_over_ranks) {
+      std::cerr << "error: " << e.what() << "\n";
+      return sc::kInternalError;
+    }
+    // On this rank only, perhaps between two exchanges the other ranks wait in: the last resort.
+    std::cerr << "error: rank " << sc::sweep_rank() << " of " << sc::sweep_ranks() << ": " << e.what()
+              << "; ending every rank\n";
+    sc::Comm::world().abort(sc::kInternalError);
   }
 }

@@ -5,8 +5,8 @@
 
 namespace sc {
 
-Progress::Progress(std::string label, double end_time)
-    : label_(std::move(label)), end_(end_time), tty_(::isatty(2) != 0),
+Progress::Progress(std::string label, double end_time, Shown shown)
+    : label_(std::move(label)), end_(end_time), shown_(shown == Shown::yes), tty_(::isatty(2) != 0),
       start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
 
 Progress::Progress(std::string label, long total, std::string unit)
@@ -32,6 +32,7 @@ void Progress::update(double time, long steps) {
 void Progress::done(double time, long steps) { draw(time, steps, true); }
 
 void Progress::draw(double time, long steps, bool final) {
+  if (!shown_) return;
   const double fraction = std::min(1.0, time / end_);
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;

@@ -54,17 +54,24 @@ void write_surfaces(const ParticleView<3>& view, double dx, const std::string& d
 
 template <int D>
 RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& settings) {
+  // Decomposed, every rank computes and rank 0 writes; whatever may fail on one rank (reading the
+  // start, rank 0's files) runs in run_agreed, so an error there stops every rank alike.
+  const Comm ranks = settings.decompose ? Comm::world() : Comm();
+  const bool writer = ranks.rank() == 0;
   const ObserverContext ctx{spec, dx, data_root()};
-  std::unique_ptr<Observer<D>> observer = make_observer<D>(ctx);  // checks the validation block first
+  std::unique_ptr<Observer<D>> observer;
   FrameLog log;
-  const std::unique_ptr<Method<D>> method = start_method<D>(spec, dx, settings.resume_from, log, settings.decompose);
-  const bool writer = !settings.decompose || Comm::world().rank() == 0;  // what every rank computes, rank 0 writes
+  std::unique_ptr<Method<D>> method;
+  run_agreed(ranks, [&] {  // no collective: the scene is decomposed without one (Decomposition::scatter)
+    observer = make_observer<D>(ctx);  // checks the validation block first
+    method = start_method<D>(spec, dx, settings.resume_from, log, settings.decompose);
+    if (writer) fs::create_directories(settings.out_dir);
+  });
   Method<D>& run = *method;
   RunResult result;
   result.spacing = dx;
   result.particles = run.particles().size();
   const double end = settings.end_time > 0.0 ? settings.end_time : spec.end_time;
-  if (writer) fs::create_directories(settings.out_dir);
 
   auto& frames = log.frames;
   double& next_frame = log.next_frame;
@@ -77,18 +84,24 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   auto write_frame = [&]() {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05zu.vtu", frames.size());
-    const std::string frame = run.vtu_frame();
+    const std::string frame = run.vtu_frame();  // collective when decomposed
     const ParticleView<D> view = run.particles();
     frames.emplace_back(run.time(), name);
-    if (!writer) return;
-    write_file_atomic(settings.out_dir + "/" + name, frame);
-    if constexpr (D == 3)
-      if (settings.write_surfaces) write_surfaces(view, dx, settings.out_dir, frames.size() - 1);
-    write_file_atomic(settings.out_dir + "/frames.pvd", pvd_document(frames, surfaces_of));
+    run_agreed(ranks, [&] {
+      if (!writer) return;
+      write_file_atomic(settings.out_dir + "/" + name, frame);
+      if constexpr (D == 3)
+        if (settings.write_surfaces) write_surfaces(view, dx, settings.out_dir, frames.size() - 1);
+      write_file_atomic(settings.out_dir + "/frames.pvd", pvd_document(frames, surfaces_of));
+    });
+  };
+  // The checkpoint gathers the state, then rank 0 writes it.
+  auto write_checkpoint = [&](const std::string& name) {
+    run_agreed(ranks, [&] { write_run_checkpoint(settings.out_dir + "/" + name, run, log); });
   };
 
   const auto start = std::chrono::steady_clock::now();
-  Progress progress(settings.label, end);
+  Progress progress(settings.label, end, writer ? Progress::Shown::yes : Progress::Shown::no);  // decomposed: rank 0's
   observer->sample(run);
   auto count_moving = [&]() {
     const ParticleView<D> view = run.particles();
@@ -101,26 +114,29 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   try {
     if (settings.write_frames && frames.empty()) write_frame();
     while (run.time() < end - 1e-12) {
-      run.step();
-      observer->sample(run);
-      count_moving();
+      run.step();  // an error on one rank inside it ends the job (main's last resort)
+      run_agreed(ranks, [&] {  // the observer's one collective, the gather of the state, comes first
+        observer->sample(run);
+        count_moving();
+      });
       if (settings.write_frames && spec.frame_interval > 0.0 && run.time() >= next_frame + spec.frame_interval - 1e-12) {
         next_frame += spec.frame_interval;
         write_frame();
       }
-      if (settings.checkpoint_every > 0 && run.steps() % settings.checkpoint_every == 0)
-        write_run_checkpoint(settings.out_dir + "/" + checkpoint_name(run.steps()), run, log);
+      if (settings.checkpoint_every > 0 && run.steps() % settings.checkpoint_every == 0) write_checkpoint(checkpoint_name(run.steps()));
       progress.update(run.time(), run.steps());
     }
     if (settings.write_frames && (frames.empty() || frames.back().first < run.time())) write_frame();
     progress.done(run.time(), run.steps());
   } catch (const BlowUpError& e) {
     progress.done(run.time(), run.steps());
-    const std::string last_good = run.last_good_frame();
-    if (writer) write_file_atomic(settings.out_dir + "/last_good.vtu", last_good);
+    const std::string last_good = run.last_good_frame();  // collective when decomposed
+    run_agreed(ranks, [&] {
+      if (writer) write_file_atomic(settings.out_dir + "/last_good.vtu", last_good);
+    });
     std::string saved = settings.out_dir + "/last_good.vtu";
     if (run.writes_checkpoints()) {
-      write_run_checkpoint(settings.out_dir + "/last_good.ckpt", run, log);
+      write_checkpoint("last_good.ckpt");
       saved += " and " + settings.out_dir + "/last_good.ckpt";
     }
     result.status = "error";
@@ -135,9 +151,11 @@ RunResult run_in_dimension(const CaseSpec& spec, double dx, const RunSettings& s
   if (spec.adaptive) result.adapt = require_sph(run, "the adaptivity report").adapt_account();
   if (settings.decompose) result.decomposition = require_sph(run, "the decomposition's account").decomposition();
   if (result.status != "error") {
-    const std::string final_frame = run.vtu_frame();
-    if (writer) write_file_atomic(settings.out_dir + "/final.vtu", final_frame);
-    result.observed = observer->finish(run);
+    const std::string final_frame = run.vtu_frame();  // collective when decomposed
+    run_agreed(ranks, [&] {
+      if (writer) write_file_atomic(settings.out_dir + "/final.vtu", final_frame);
+      result.observed = observer->finish(run);
+    });
     for (const auto& [name, metric] : result.observed.metrics)
       if (!metric.pass()) result.status = "fail";
     result.exit_code = result.status == "pass" ? kSuccess : kCaseFailed;

@@ -1,6 +1,7 @@
 // Error types with the information the command line needs to pick an exit code and tell the user
 // what to fix: bad input (exit 2) names the file, the JSON path and the rule; a blow-up (exit 3)
-// names the step, time, particle and field.
+// names the step, time, particle and field; an error on one rank of a run over MPI ranks is made
+// known to every rank, naming the rank (RankError).
 #pragma once
 #include <stdexcept>
 #include <string>
@@ -36,6 +37,22 @@ class BlowUpError : public std::runtime_error {
 
  private:
   long step_, particle_;
+};
+
+/// An error on one rank of a run over several MPI ranks, made known to every rank (Comm::agree) so
+/// that all of them stop alike: the lowest failing rank, its error's message, and the kind of that
+/// error, which picks the exit code as it would in one process.
+class RankError : public std::runtime_error {
+ public:
+  enum class Kind { Input, BlowUp, Other };
+  RankError(int rank, Kind kind, const std::string& what)
+      : std::runtime_error("rank " + std::to_string(rank) + ": " + what), rank_(rank), kind_(kind) {}
+  int rank() const { return rank_; }
+  Kind kind() const { return kind_; }
+
+ private:
+  int rank_;
+  Kind kind_;
 };
 
 }  // namespace sc

@@ -1,5 +1,6 @@
 #include "core/particle_set.hpp"
 
+#include <atomic>
 #include <cstring>
 #include <omp.h>
 #include <type_traits>
@@ -9,8 +10,31 @@
 
 namespace sc {
 
+namespace {
+
+/// A layout value not given out before in this process (ParticleSet::layout).
+std::uint64_t fresh_layout() {
+  static std::atomic<std::uint64_t> next{1};
+  return next++;
+}
+
+}  // namespace
+
+template <int D>
+void ParticleSet<D>::relayout() {
+  layout_ = fresh_layout();
+  prefix_.reset();
+}
+
+template <int D>
+void ParticleSet<D>::appended(Prefix before) {
+  relayout();
+  prefix_ = before;
+}
+
 template <int D>
 std::size_t ParticleSet<D>::append() {
+  const Prefix before{size(), layout_};
   visit_fields([](std::string_view, auto& field) { field.emplace_back(); });
   const std::size_t i = size() - 1;
   x[i].setZero(); v[i].setZero(); force[i].setZero();
@@ -19,7 +43,7 @@ std::size_t ParticleSet<D>::append() {
   phase[i] = static_cast<std::uint8_t>(Phase::Water);
   rough[i] = 0;
   id[i] = next_id_++;
-  ++layout_;
+  appended(before);
   return i;
 }
 
@@ -62,26 +86,25 @@ template <int D>
 bool ParticleSet<D>::compact() {
   bool changed = false;
   if (remove_flag_.size() == size()) {
-    std::size_t n = 0;
     std::vector<std::size_t> keep;
     keep.reserve(size());
     for (std::size_t i = 0; i < size(); ++i)
       if (!remove_flag_[i]) keep.push_back(i);
-    n = keep.size();
-    if (n != size()) {
-      permute(keep);
+    if (keep.size() != size()) {
+      permute(keep);  // a new layout
       changed = true;
     }
   }
   remove_flag_.clear();
   if (!additions_.empty() && additions_.front().size() > 0) {
+    const Prefix before{size(), layout_};
     ParticleSet& add = additions_.front();
     visit_fields_with(add, [](auto& field, const auto& src) { field.insert(field.end(), src.begin(), src.end()); });
     next_id_ = add.next_id_;
     additions_.clear();
+    appended(before);
     changed = true;
   }
-  if (changed) ++layout_;
   return changed;
 }
 
@@ -94,7 +117,7 @@ void ParticleSet<D>::permute(const std::vector<std::size_t>& order) {
     for (std::int64_t k = 0; k < n; ++k) out[k] = field[order[k]];
     field.swap(out);
   });
-  ++layout_;
+  relayout();
 }
 
 template <int D>
@@ -102,7 +125,12 @@ void ParticleSet<D>::truncate(std::size_t n) {
   if (n >= size()) return;
   visit_fields([n](std::string_view, auto& field) { field.resize(n); });
   remove_flag_.clear();
-  ++layout_;
+  if (prefix_ && prefix_->size == n) {
+    layout_ = prefix_->layout;
+    prefix_.reset();
+  } else {
+    relayout();
+  }
 }
 
 template <int D>
@@ -125,6 +153,7 @@ void ParticleSet<D>::copy_from(const ParticleSet& other) {
   additions_ = other.additions_;
   next_id_ = other.next_id_;
   layout_ = other.layout_;
+  prefix_ = other.prefix_;
 }
 
 template <int D>

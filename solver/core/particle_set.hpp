@@ -10,6 +10,7 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -109,7 +110,10 @@ class ParticleSet {
   /// Reorders every field: new index k holds old particle order[k].
   void permute(const std::vector<std::size_t>& order);
   /// Removes the particles from index n on (the halo a decomposed run appends after its own
-  /// particles, parallel/decomposition.hpp), keeping the others where they are.
+  /// particles, parallel/decomposition.hpp), keeping the others where they are. When the last
+  /// change of the layout appended particles after the first n, the set gets back the layout it
+  /// had with the n alone: a rank's own particles keep their layout through a step, and the
+  /// blow-up guard refreshes its copy instead of copying it (Simulator::save_last_good).
   void truncate(std::size_t n);
   /// Makes this a copy of `other` (as operator=, reusing this set's storage), copying the fields in
   /// parallel: the blow-up guard copies the state every step.
@@ -119,7 +123,8 @@ class ParticleSet {
   /// copies the other particles in full and those three fields of the inert ones. A step changes
   /// nothing else of a fixed wall particle, and walls are most of a tank scene's particles.
   void refresh_from(const ParticleSet& other);
-  /// Changes whenever the particles are reordered, removed or added (permute, compact, append).
+  /// Changes whenever the particles are reordered, removed or added (permute, compact, append,
+  /// truncate) to a value no other order of particles in the process has had.
   std::uint64_t layout() const { return layout_; }
   /// Bytes of all positions and velocities hashed (FNV-1a 64), as 16 hex digits.
   std::string checksum() const;
@@ -132,11 +137,22 @@ class ParticleSet {
   template <class F>
   void visit_fields_with(const ParticleSet& other, F&& f);
 
+  /// The first particles in their order before the particles after them were appended.
+  struct Prefix {
+    std::size_t size;
+    std::uint64_t layout;
+  };
+  /// A new layout after a change other than appending.
+  void relayout();
+  /// A new layout after appending to the first `before.size` particles, which had `before.layout`.
+  void appended(Prefix before);
+
   std::vector<std::uint8_t> remove_flag_;
   std::vector<ParticleSet> additions_;  // zero or one element (a class cannot hold itself)
   std::int64_t next_id_ = 0;
   std::uint64_t layout_ = 0;
   bool porous_fields_ = false;
+  std::optional<Prefix> prefix_;  // set when the last change of the layout was an append
 };
 
 std::string_view phase_name(Phase p);

@@ -1,6 +1,10 @@
 #include "parallel/comm.hpp"
 
+#include <array>
+#include <cstdlib>
 #include <stdexcept>
+
+#include "core/errors.hpp"
 
 #ifdef SANDCASTLE_HAS_MPI
 #include <mpi.h>
@@ -43,6 +47,21 @@ std::vector<std::string> split(const std::string& all, const std::vector<int>& s
   return out;
 }
 #endif
+
+/// The kind and message of an error, as "<kind digit><message>".
+std::string describe(std::exception_ptr error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const InputError& e) {
+    return std::to_string(static_cast<int>(RankError::Kind::Input)) + e.what();
+  } catch (const BlowUpError& e) {
+    return std::to_string(static_cast<int>(RankError::Kind::BlowUp)) + e.what();
+  } catch (const std::exception& e) {
+    return std::to_string(static_cast<int>(RankError::Kind::Other)) + e.what();
+  } catch (...) {
+    return std::to_string(static_cast<int>(RankError::Kind::Other)) + "unknown error";
+  }
+}
 
 }  // namespace
 
@@ -140,6 +159,22 @@ std::string Comm::broadcast(std::string text, int root) const {
   (void)root;
 #endif
   return text;
+}
+
+void Comm::agree(std::exception_ptr error) const {
+  std::array<std::uint64_t, 1> failed = {error ? static_cast<std::uint64_t>(rank_) : UINT64_MAX};
+  min(failed);
+  if (failed[0] == UINT64_MAX) return;
+  const int root = static_cast<int>(failed[0]);
+  const std::string what = broadcast(rank_ == root ? describe(error) : std::string(), root);
+  throw RankError(root, static_cast<RankError::Kind>(what.at(0) - '0'), what.substr(1));
+}
+
+void Comm::abort(int code) const {
+#ifdef SANDCASTLE_HAS_MPI
+  if (size_ > 1) MPI_Abort(MPI_COMM_WORLD, code);
+#endif
+  std::exit(code);
 }
 
 }  // namespace sc

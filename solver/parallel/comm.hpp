@@ -5,6 +5,7 @@
 // launcher) there is one rank and every collective is the identity.
 #pragma once
 #include <cstdint>
+#include <exception>
 #include <span>
 #include <string>
 #include <vector>
@@ -30,9 +31,30 @@ class Comm {
   std::vector<std::string> all_gather(const std::string& mine) const;
   /// Rank `root`'s `text` on every rank.
   std::string broadcast(std::string text, int root) const;
+  /// Whether every rank got through: `error` is this rank's error (null if none). If any rank has
+  /// one, throws on every rank the RankError (core/errors.hpp) of the lowest such rank's. Collective.
+  void agree(std::exception_ptr error) const;
+  /// Ends every rank of the run at once with exit code `code` (MPI_Abort; std::exit in one rank):
+  /// the last resort for an error on one rank in the middle of a collective exchange.
+  [[noreturn]] void abort(int code) const;
 
  private:
   int rank_ = 0, size_ = 1;
 };
+
+/// Runs `local` on every rank of `comm` and ends it alike on all (Comm::agree): an error on one rank
+/// is thrown on every rank as a RankError. The collectives `local` calls, if any, must all come
+/// before whatever may fail on one rank only (e.g. the gather of the state, then rank 0's write).
+template <class F>
+void run_agreed(const Comm& comm, F&& local) {
+  if (comm.size() == 1) return local();
+  std::exception_ptr error;
+  try {
+    local();
+  } catch (...) {
+    error = std::current_exception();
+  }
+  comm.agree(error);
+}
 
 }  // namespace sc
