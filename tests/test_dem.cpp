@@ -565,7 +565,7 @@ WetScene wet_scene() {
 /// forces left out: they conserve momentum by themselves), then the exchange of the coupled step
 /// (exchange_with_water: water-grain impulse, absorption, wetness propagation).
 void coupled_step(WetScene& s, Contacts<3>& contacts, ExchangeGrids<3>& grids) {
-  update_neighbours(s.grains, s.p, contacts.near);
+  update_neighbours(s.grains, s.p, std::span<const Plane<3>>(), contacts);
   grain_forces(s.grains, contacts, s.p, Vec<3>(Vec<3>::Zero()), std::span<const Plane<3>>(), s.dt);
   integrate(s.grains, s.p, s.dt);
   for (std::size_t i = 0; i < s.water.size(); ++i) s.water.x[i] += s.dt * s.water.v[i];
@@ -643,7 +643,7 @@ template <int D>
 bool same_as_each_side(const Grains<D>& g, Contacts<D>& contacts, const Params& p, const Vec<D>& gravity,
                        std::span<const Plane<D>> walls, double dt) {
   Grains<D> once = g;
-  update_neighbours(once, p, contacts.near);
+  update_neighbours(once, p, walls, contacts);
   const auto [f, t] = forces_from_each_side(g, contacts.near, p, gravity, walls, dt);
   grain_forces(once, contacts, p, gravity, walls, dt);
   return same_bytes(once.force, f) && same_bytes(once.torque, t);
@@ -842,8 +842,9 @@ BOOST_AUTO_TEST_CASE(wetness_propagation_conserves_water) {
 
 // [Rungjiratananon 2008: DEM normal force; Cundall & Strack 1979; Ai et al. 2011: rolling model C]
 // evaluated once per pair: dem::grain_forces gives every grain bitwise the force and torque of
-// evaluating each of its contacts itself and trying every wall (forces_from_each_side), so the pair
-// pass changes no bit. In a 3-D box of 125 dry spheres of unequal radii settled on rough walls with rolling resistance, then
+// evaluating each of its contacts itself and trying every wall (forces_from_each_side), so neither
+// the pair pass nor the walls skipped by grains far from them (Contacts::near_wall) change a bit. In a
+// 3-D box of 125 dry spheres of unequal radii settled on rough walls with rolling resistance, then
 // wetted (up to over-wet, radii shrunk, Willett's bridges across gaps) and stepped on; each time with
 // more contacts than grains.
 BOOST_AUTO_TEST_CASE(pairs_evaluated_once_give_each_grain_its_own_sums) {

@@ -121,7 +121,8 @@ void evaluate_pairs(Grains<D>& g, Contacts<D>& contacts, const Params& p, double
 
 /// The gather: each grain sums its weight, its pairs' contacts in the order of its list (as evaluated
 /// for the lower grain: from the higher one, the force negated and the other torque), then its
-/// contacts with the walls, whose springs it keeps (Grains::wall_springs). The terms and their order are those of each grain evaluating all its
+/// contacts with the walls if it may reach one (Contacts::near_wall), whose springs it keeps
+/// (Grains::wall_springs). The terms and their order are those of each grain evaluating all its
 /// contacts itself, and so are the sums' bits (a term differs at most in the sign of a zero, which
 /// leaves a sum started at +0 or at a weight unchanged).
 template <int D>
@@ -142,7 +143,7 @@ void gather_forces(Grains<D>& g, const Contacts<D>& contacts, const Params& p, c
       }
     });
     std::size_t next = 0;
-    for (std::size_t w = 0; w < walls.size(); ++w) {
+    for (std::size_t w = 0; contacts.near_wall[i] && w < walls.size(); ++w) {
       if (!may_touch(g, i, walls[w])) continue;
       Spring<D> spring = previous_spring(g.wall_springs.of(i), wall_key(w), next);
       const ContactForce<D> c = wall_force(g, i, walls[w], p, dt, spring);
@@ -179,10 +180,19 @@ void bin_grains(const Grains<D>& g, const Params& p, CellGrid<D>& grid) {
 }
 
 template <int D>
-void update_neighbours(const Grains<D>& g, const Params& p, NeighbourList<D>& list) {
-  const double range = interaction_range(g, p);
+void update_neighbours(const Grains<D>& g, const Params& p, std::span<const Plane<D>> walls, Contacts<D>& contacts) {
+  const double range = interaction_range(g, p), skin = 0.1 * range;
   const std::span<const Vec<D>> x(g.x.data(), g.x.size());
-  if (list.stale(x, range)) list.build(x, range, 0.1 * range);
+  if (!contacts.near.stale(x, range)) return;
+  contacts.near.build(x, range, skin);
+  contacts.near_wall.resize(g.size());
+  const auto n = static_cast<std::ptrdiff_t>(g.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    contacts.near_wall[i] = std::ranges::any_of(
+        walls, [&](const Plane<D>& w) { return (g.x[i] - w.point).dot(w.normal) < g.radius[i] + skin; });
+  }
 }
 
 template <int D>
@@ -247,7 +257,7 @@ void integrate(Grains<D>& g, const Params& p, double dt) {
 template <int D>
 void step(Grains<D>& g, Contacts<D>& contacts, const Params& p, const Vec<D>& gravity,
           std::span<const Plane<D>> walls, double dt) {
-  update_neighbours(g, p, contacts.near);
+  update_neighbours(g, p, walls, contacts);
   grain_forces(g, contacts, p, gravity, walls, dt);
   integrate(g, p, dt);
 }
@@ -259,7 +269,7 @@ void step(Grains<D>& g, Contacts<D>& contacts, const Params& p, const Vec<D>& gr
                                          Spring<D>&);                                                        \
   template ContactForce<D> wall_force<D>(const Grains<D>&, std::size_t, const Plane<D>&, const Params&, double, \
                                          Spring<D>&);                                                        \
-  template void update_neighbours<D>(const Grains<D>&, const Params&, NeighbourList<D>&);                    \
+  template void update_neighbours<D>(const Grains<D>&, const Params&, std::span<const Plane<D>>, Contacts<D>&); \
   template void grain_forces<D>(Grains<D>&, Contacts<D>&, const Params&, const Vec<D>&,                     \
                                 std::span<const Plane<D>>, double);                                          \
   template void integrate<D>(Grains<D>&, const Params&, double);                                              \

@@ -20,12 +20,14 @@ namespace sc::dem {
 template <int D>
 double interaction_range(const Grains<D>& g, const Params& p);
 
-/// What the contact step keeps from step to step: the neighbour list, and per listed pair (numbered
-/// by the list) its contact of the step, evaluated once for both grains. Sized with the list, so a
-/// step allocates nothing once the list has stopped growing.
+/// What the contact step keeps from step to step: the neighbour list and the grains that may reach
+/// a wall while it stands, and per listed pair (numbered by the list) its contact of the step,
+/// evaluated once for both grains. Sized with the list, so a step allocates nothing once the list
+/// has stopped growing.
 template <int D>
 struct Contacts {
   NeighbourList<D> near;
+  std::vector<std::uint8_t> near_wall;  ///< per grain: within its radius plus the skin of a wall at the build
   std::vector<ContactForce<D>, Eigen::aligned_allocator<ContactForce<D>>> pair;  ///< from the lower grain i's side
   std::vector<std::uint8_t> acts;  ///< whether the pair may interact this step (pair is set only then)
 };
@@ -35,9 +37,12 @@ template <int D>
 void bin_grains(const Grains<D>& g, const Params& p, CellGrid<D>& grid);
 
 /// Builds the contact step's neighbour list again when it is stale (a grain moved more than half
-/// its skin, a tenth of interaction_range, or the range grew).
+/// its skin, a tenth of interaction_range, or the range grew), and with it which grains may reach a
+/// wall before the next build: those within their radius plus the whole skin of it (twice the
+/// distance a grain moves meanwhile, so no contact is missed). The others skip the walls, so `walls`
+/// must be those of the steps that use the list.
 template <int D>
-void update_neighbours(const Grains<D>& g, const Params& p, NeighbourList<D>& list);
+void update_neighbours(const Grains<D>& g, const Params& p, std::span<const Plane<D>> walls, Contacts<D>& contacts);
 
 /// Force and torque on grain i from grain j (contact and bridge) over a step Δt; zero when apart.
 /// `spring` holds i's springs of the contact (relaxed for a new one) and is advanced by Δt.

@@ -247,7 +247,7 @@ void DemMethod<D>::step_grains(double dt) {
   for (int s = 0; s < substeps; ++s) {
     {
       auto scope = timers_.time(dem::DemStage::Contacts);
-      dem::update_neighbours(grains_, params_, contacts_.near);
+      dem::update_neighbours(grains_, params_, std::span<const dem::Plane<D>>(walls_), contacts_);
       dem::grain_forces(grains_, contacts_, params_, gravity_, std::span<const dem::Plane<D>>(walls_), h);
     }
     auto scope = timers_.time(dem::DemStage::Integration);
