@@ -7,9 +7,10 @@
 //   purely viscous regularisation creeps under a static load, so no pile could stand);
 // - the bridge acts only between two grains that both hold water (the seed's form gives two dry
 //   grains the strongest bridge).
-// Every law returns the force on grain i; grain j evaluates the same law from its side, which gives
-// the exact negative (the pair terms are antisymmetric in their inputs, the springs each grain keeps
-// of a contact stay exact negatives of each other), so momentum is conserved.
+// Every law returns the force on grain i; evaluated from j's side, with j's springs (the exact
+// negatives of i's), it gives the exact negative (the pair terms are antisymmetric in their inputs),
+// so momentum is conserved. The torque on j is returned beside i's, as j's own evaluation gives it, so
+// a pair is evaluated once for both grains (solver/dem/dem_forces.cpp).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -29,12 +30,14 @@ struct Contact {
   double friction;       ///< μ of the pair
   double r_eff;          ///< a_i a_j/(a_i + a_j) (a_i for a wall) [m]
   double lever;          ///< a_i: distance from i's centre to the contact point [m]
+  double lever_other;    ///< a_j: distance from j's centre to the contact point (0 for a wall) [m]
 };
 
 template <int D>
 struct ContactForce {
   Vec<D> force;          ///< on i [N]
   Spin<D> torque;        ///< on i about its centre [N m]
+  Spin<D> torque_other = Spin<D>::Zero();  ///< on j about its centre, the bits of j's own evaluation [N m]
   bool touching = false; ///< the bodies overlap: the contact's springs are kept for the next step
 };
 
@@ -82,8 +85,10 @@ inline Spin<D> rolling_torque(const Spin<D>& omega_rel, double k_n, double gamma
   return rolling;
 }
 
-/// Spring-dashpot, friction and rolling resistance of one contact over a step Δt, on grain i; the
-/// contact's springs are read and advanced in `spring`.
+/// Spring-dashpot, friction and rolling resistance of one contact over a step Δt, on grain i (and the
+/// torque on j); the contact's springs are read and advanced in `spring`. From j's side the normal,
+/// tangential force and rolling torque are the exact negatives of i's, so j's torque is
+/// a_j n × f_t − m_r with i's n, f_t and m_r: the same bits as j's own a_j (−n) × (−f_t) + (−m_r).
 template <int D>
 ContactForce<D> contact_force(const Contact<D>& c, const Params& p, double dt, Spring<D>& spring) {
   const double v_n = c.v_contact.dot(c.n);
@@ -91,10 +96,13 @@ ContactForce<D> contact_force(const Contact<D>& c, const Params& p, double dt, S
   const Vec<D> v_t = c.v_contact - v_n * c.n;
   const Vec<D> f_t = tangential_force<D>(c.n, v_t, p.tangential_stiffness_ratio * p.stiffness, p.tangential_damping,
                                          c.wet_factor, c.friction, f_n, dt, spring.slip);
-  ContactForce<D> out{-f_n * c.n + f_t, Spin<D>::Zero(), true};
-  if (p.rotation)
-    out.torque = moment<D>(c.lever * c.n, f_t) + rolling_torque<D>(c.omega_rel, p.stiffness, p.rolling_damping,
-                                                                   p.rolling_friction, c.r_eff, f_n, dt, spring.roll);
+  ContactForce<D> out{-f_n * c.n + f_t, Spin<D>::Zero(), Spin<D>::Zero(), true};
+  if (p.rotation) {
+    const Spin<D> rolling = rolling_torque<D>(c.omega_rel, p.stiffness, p.rolling_damping, p.rolling_friction,
+                                              c.r_eff, f_n, dt, spring.roll);
+    out.torque = moment<D>(c.lever * c.n, f_t) + rolling;
+    out.torque_other = moment<D>(c.lever_other * c.n, f_t) - rolling;
+  }
   return out;
 }
 

@@ -43,14 +43,14 @@ bool may_touch(const Grains<D>& g, std::size_t i, const Plane<D>& wall) {
 }
 
 /// The spring grain i kept of its contact with `key` last step, or a relaxed one for a new contact.
-/// The contacts are visited in the order they were kept (neighbour list, then walls), so the search
+/// The contacts are visited in the order they were kept (list order, or wall order), so the search
 /// starts at `next`, just after the last one found, and wraps around: one comparison per contact
 /// instead of a scan of all of them.
 template <int D>
 Spring<D> previous_spring(std::span<const Spring<D>> springs, std::uint32_t key, std::size_t& next) {
   const std::size_t n = springs.size();
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::size_t at = (next + k) % n;
+  for (std::size_t k = 0, at = next; k < n; ++k, ++at) {
+    if (at >= n) at -= n;  // next <= n, so at < 2n: one subtraction wraps it, no division
     if (springs[at].other == key) {
       next = at + 1;
       return springs[at];
@@ -73,6 +73,87 @@ void keep_overflow(ContactHistory<D>& history, const Overflow<D>& overflow) {
   for (const auto& [i, kept] : overflow) needed = std::max(needed, kept.size());
   history.grow(needed);
   for (const auto& [i, kept] : overflow) history.keep(i, kept);
+}
+
+/// Calls contacts_of(i, kept) for every grain i, which computes i's share of the step and lists in
+/// `kept` the contacts it keeps in `history`, and keeps them there (growing the history when some
+/// grain keeps more than its capacity). Dynamic schedule: a settling pile's lower grains have many
+/// contacts and its upper ones few, so equal shares of the grain order are unequal work. Each grain's
+/// results are its own: any schedule gives the same bits.
+template <int D, class F>
+void for_each_grain_keeping(std::size_t grains, ContactHistory<D>& history, F&& contacts_of) {
+  const auto n = static_cast<std::ptrdiff_t>(grains);
+  Overflow<D> overflow;
+#pragma omp parallel
+  {
+    std::vector<Spring<D>> kept;
+    Overflow<D> my_overflow;
+#pragma omp for schedule(dynamic, 256)
+    for (std::ptrdiff_t s = 0; s < n; ++s) {
+      const auto i = static_cast<std::size_t>(s);
+      kept.clear();
+      contacts_of(i, kept);
+      if (!history.keep(i, kept)) my_overflow.emplace_back(i, kept);
+    }
+#pragma omp critical(dem_contact_overflow)
+    overflow.insert(overflow.end(), my_overflow.begin(), my_overflow.end());
+  }
+  keep_overflow(history, overflow);
+}
+
+/// The pair pass: every listed pair {i, j}, i < j, that may interact is evaluated once, from i's side
+/// with the springs i keeps of it (Grains::springs), into the pair's slot of `contacts`.
+template <int D>
+void evaluate_pairs(Grains<D>& g, Contacts<D>& contacts, const Params& p, double dt) {
+  contacts.pair.resize(contacts.near.pairs());
+  contacts.acts.resize(contacts.near.pairs());
+  for_each_grain_keeping(g.size(), g.springs, [&](std::size_t i, std::vector<Spring<D>>& kept) {
+    std::size_t next = 0;
+    contacts.near.for_each_owned(i, [&](std::uint32_t j, std::uint32_t q) {
+      contacts.acts[q] = may_interact(g, i, j, p);
+      if (!contacts.acts[q]) return;
+      Spring<D> spring = previous_spring(g.springs.of(i), j, next);
+      contacts.pair[q] = pair_force(g, i, j, p, dt, spring);
+      if (contacts.pair[q].touching) kept.push_back(spring);
+    });
+  });
+}
+
+/// The gather: each grain sums its weight, its pairs' contacts in the order of its list (as evaluated
+/// for the lower grain: from the higher one, the force negated and the other torque), then its
+/// contacts with the walls if it may reach one (Contacts::near_wall), whose springs it keeps
+/// (Grains::wall_springs). The terms and their order are those of each grain evaluating all its
+/// contacts itself, and so are the sums' bits (a term differs at most in the sign of a zero, which
+/// leaves a sum started at +0 or at a weight unchanged).
+template <int D>
+void gather_forces(Grains<D>& g, const Contacts<D>& contacts, const Params& p, const Vec<D>& gravity,
+                   std::span<const Plane<D>> walls, double dt) {
+  for_each_grain_keeping(g.size(), g.wall_springs, [&](std::size_t i, std::vector<Spring<D>>& kept) {
+    Vec<D> f = g.mass(i) * gravity;
+    Spin<D> t = Spin<D>::Zero();
+    contacts.near.for_each_pair(i, [&](std::uint32_t q, bool lower) {
+      if (!contacts.acts[q]) return;
+      const ContactForce<D>& c = contacts.pair[q];
+      if (lower) {
+        f += c.force;
+        t += c.torque;
+      } else {
+        f -= c.force;
+        t += c.torque_other;
+      }
+    });
+    std::size_t next = 0;
+    for (std::size_t w = 0; contacts.near_wall[i] && w < walls.size(); ++w) {
+      if (!may_touch(g, i, walls[w])) continue;
+      Spring<D> spring = previous_spring(g.wall_springs.of(i), wall_key(w), next);
+      const ContactForce<D> c = wall_force(g, i, walls[w], p, dt, spring);
+      f += c.force;
+      t += c.torque;
+      if (c.touching) kept.push_back(spring);
+    }
+    g.force[i] = f;
+    g.torque[i] = t;
+  });
 }
 
 }  // namespace
@@ -99,10 +180,19 @@ void bin_grains(const Grains<D>& g, const Params& p, CellGrid<D>& grid) {
 }
 
 template <int D>
-void update_neighbours(const Grains<D>& g, const Params& p, NeighbourList<D>& list) {
-  const double range = interaction_range(g, p);
+void update_neighbours(const Grains<D>& g, const Params& p, std::span<const Plane<D>> walls, Contacts<D>& contacts) {
+  const double range = interaction_range(g, p), skin = 0.1 * range;
   const std::span<const Vec<D>> x(g.x.data(), g.x.size());
-  if (list.stale(x, range)) list.build(x, range, 0.1 * range);
+  if (!contacts.near.stale(x, range)) return;
+  contacts.near.build(x, range, skin);
+  contacts.near_wall.resize(g.size());
+  const auto n = static_cast<std::ptrdiff_t>(g.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t s = 0; s < n; ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    contacts.near_wall[i] = std::ranges::any_of(
+        walls, [&](const Plane<D>& w) { return (g.x[i] - w.point).dot(w.normal) < g.radius[i] + skin; });
+  }
 }
 
 template <int D>
@@ -123,10 +213,11 @@ ContactForce<D> pair_force(const Grains<D>& g, std::size_t i, std::size_t j, con
   const Vec<D> vc = (g.v[i] - g.v[j]) + spin_cross<D>(ai * g.omega[i] + aj * g.omega[j], n);
   // 1 + (w_i + w_j), not (1 + w_i) + w_j: the same bits from either side of the pair.
   const Contact<D> c{n, overlap, vc, g.omega[i] - g.omega[j], 1.0 + (g.saturation(i, p) + g.saturation(j, p)),
-                     p.friction, r_eff, ai};
+                     p.friction, r_eff, ai, aj};
   const ContactForce<D> f = contact_force(c, p, dt, spring);
   out.force += f.force;
   out.torque = f.torque;
+  out.torque_other = f.torque_other;
   out.touching = true;
   return out;
 }
@@ -139,50 +230,16 @@ ContactForce<D> wall_force(const Grains<D>& g, std::size_t i, const Plane<D>& wa
   if (overlap <= 0.0) return {Vec<D>::Zero(), Spin<D>::Zero()};
   const Vec<D> n = -wall.normal;
   const Vec<D> vc = g.v[i] + spin_cross<D>(ai * g.omega[i], n);
-  const Contact<D> c{n, overlap, vc, g.omega[i], 1.0 + g.saturation(i, p), wall.rough ? p.wall_friction : 0.0, ai, ai};
+  const Contact<D> c{n, overlap, vc, g.omega[i], 1.0 + g.saturation(i, p), wall.rough ? p.wall_friction : 0.0, ai, ai,
+                     0.0};
   return contact_force(c, p, dt, spring);
 }
 
 template <int D>
-void grain_forces(Grains<D>& g, const NeighbourList<D>& near, const Params& p, const Vec<D>& gravity,
+void grain_forces(Grains<D>& g, Contacts<D>& contacts, const Params& p, const Vec<D>& gravity,
                   std::span<const Plane<D>> walls, double dt) {
-  const auto n = static_cast<std::ptrdiff_t>(g.size());
-  Overflow<D> overflow;
-#pragma omp parallel
-  {
-    std::vector<Spring<D>> kept;  // grain i's contacts of this step, written back to g.springs
-    Overflow<D> my_overflow;
-    // Dynamic: a settling pile's lower grains have many contacts and its upper ones few, so equal
-    // shares of the grain order are unequal work. Each grain's sums are its own: any schedule
-    // gives the same bits.
-#pragma omp for schedule(dynamic, 256)
-    for (std::ptrdiff_t s = 0; s < n; ++s) {
-      const auto i = static_cast<std::size_t>(s);
-      Vec<D> f = g.mass(i) * gravity;
-      Spin<D> t = Spin<D>::Zero();
-      kept.clear();
-      std::size_t next = 0;
-      const auto add = [&](std::uint32_t key, auto&& force_of) {
-        Spring<D> spring = previous_spring(g.springs.of(i), key, next);
-        const ContactForce<D> c = force_of(spring);
-        f += c.force;
-        t += c.torque;
-        if (c.touching) kept.push_back(spring);
-      };
-      near.for_each_near(i, [&](std::uint32_t j) {
-        if (may_interact(g, i, j, p)) add(j, [&](Spring<D>& spring) { return pair_force(g, i, j, p, dt, spring); });
-      });
-      for (std::size_t w = 0; w < walls.size(); ++w)
-        if (may_touch(g, i, walls[w]))
-          add(wall_key(w), [&](Spring<D>& spring) { return wall_force(g, i, walls[w], p, dt, spring); });
-      g.force[i] = f;
-      g.torque[i] = t;
-      if (!g.springs.keep(i, kept)) my_overflow.emplace_back(i, kept);
-    }
-#pragma omp critical(dem_contact_overflow)
-    overflow.insert(overflow.end(), my_overflow.begin(), my_overflow.end());
-  }
-  keep_overflow(g.springs, overflow);
+  evaluate_pairs(g, contacts, p, dt);
+  gather_forces(g, contacts, p, gravity, walls, dt);
 }
 
 template <int D>
@@ -198,10 +255,10 @@ void integrate(Grains<D>& g, const Params& p, double dt) {
 }
 
 template <int D>
-void step(Grains<D>& g, NeighbourList<D>& near, const Params& p, const Vec<D>& gravity,
+void step(Grains<D>& g, Contacts<D>& contacts, const Params& p, const Vec<D>& gravity,
           std::span<const Plane<D>> walls, double dt) {
-  update_neighbours(g, p, near);
-  grain_forces(g, near, p, gravity, walls, dt);
+  update_neighbours(g, p, walls, contacts);
+  grain_forces(g, contacts, p, gravity, walls, dt);
   integrate(g, p, dt);
 }
 
@@ -212,11 +269,11 @@ void step(Grains<D>& g, NeighbourList<D>& near, const Params& p, const Vec<D>& g
                                          Spring<D>&);                                                        \
   template ContactForce<D> wall_force<D>(const Grains<D>&, std::size_t, const Plane<D>&, const Params&, double, \
                                          Spring<D>&);                                                        \
-  template void update_neighbours<D>(const Grains<D>&, const Params&, NeighbourList<D>&);                    \
-  template void grain_forces<D>(Grains<D>&, const NeighbourList<D>&, const Params&, const Vec<D>&,           \
+  template void update_neighbours<D>(const Grains<D>&, const Params&, std::span<const Plane<D>>, Contacts<D>&); \
+  template void grain_forces<D>(Grains<D>&, Contacts<D>&, const Params&, const Vec<D>&,                     \
                                 std::span<const Plane<D>>, double);                                          \
   template void integrate<D>(Grains<D>&, const Params&, double);                                              \
-  template void step<D>(Grains<D>&, NeighbourList<D>&, const Params&, const Vec<D>&, std::span<const Plane<D>>,   \
+  template void step<D>(Grains<D>&, Contacts<D>&, const Params&, const Vec<D>&, std::span<const Plane<D>>,       \
                         double);
 SC_DEM_FORCES(2)
 SC_DEM_FORCES(3)

@@ -151,9 +151,9 @@ dem::Grains<D> packed_block(const CaseSpec& spec, const DemCaseParams& own, doub
       if (d < D - 1 || outward < 0) mould.push_back(box_side<D>(lo, hi, d, outward, false));  // open top
   const Vec<D> gravity = to_vec<D>(spec.gravity);
   const double h = dem::stable_step(g, p), weight_scale = g.size() * g.mass(0) * gravity.norm() * (top - lo)[D - 1];
-  dem::NeighbourList<D> cells;
+  dem::Contacts<D> contacts;
   for (int chunk = 0; chunk < 200; ++chunk) {  // at most 200 x 200 contact steps
-    for (int s = 0; s < 200; ++s) dem::step(g, cells, p, gravity, std::span<const dem::Plane<D>>(mould), h);
+    for (int s = 0; s < 200; ++s) dem::step(g, contacts, p, gravity, std::span<const dem::Plane<D>>(mould), h);
     if (kinetic_energy(g) < 1e-10 * weight_scale) break;
   }
   dem::Grains<D> kept;
@@ -247,8 +247,8 @@ void DemMethod<D>::step_grains(double dt) {
   for (int s = 0; s < substeps; ++s) {
     {
       auto scope = timers_.time(dem::DemStage::Contacts);
-      dem::update_neighbours(grains_, params_, cells_);
-      dem::grain_forces(grains_, cells_, params_, gravity_, std::span<const dem::Plane<D>>(walls_), h);
+      dem::update_neighbours(grains_, params_, std::span<const dem::Plane<D>>(walls_), contacts_);
+      dem::grain_forces(grains_, contacts_, params_, gravity_, std::span<const dem::Plane<D>>(walls_), h);
     }
     auto scope = timers_.time(dem::DemStage::Integration);
     dem::integrate(grains_, params_, h);

@@ -125,7 +125,7 @@ class DemMethod final : public ParticleAdapter<D, DemFrame<D>> {
   bool wet_;
   double time_ = 0.0;
   long steps_ = 0, contact_steps_ = 0;
-  dem::NeighbourList<D> cells_;
+  dem::Contacts<D> contacts_;
   dem::ExchangeGrids<D> exchange_;
   StageClock<dem::DemStage> timers_;
   DemFrame<D> frame_;

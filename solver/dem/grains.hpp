@@ -39,8 +39,9 @@ struct Plane {
   bool rough = true;
 };
 
-/// What a contact remembers from step to step, kept by grain i (Grains::springs): the tangential
-/// spring's stretch ξ and the rolling spring's twist ψ, both from i's side.
+/// What a contact remembers from step to step, kept by grain i (Grains::springs, Grains::wall_springs):
+/// the tangential spring's stretch ξ and the rolling spring's twist ψ, both from i's side (the other
+/// grain's are their exact negatives).
 template <int D>
 struct Spring {
   std::uint32_t other = 0;          ///< the other grain, or wall_key(w) for wall w
@@ -48,8 +49,8 @@ struct Spring {
   Spin<D> roll = Spin<D>::Zero();   ///< ψ [rad]
 };
 
-/// The contacts every grain kept of the last step, from its side, in one array: grain i's are the
-/// first count(i) of its `capacity()` slots. One array in grain order, not a vector per grain, so the
+/// The contacts the grains kept of the last step, each by one grain and from its side, in one array:
+/// grain i's are the first count(i) of its `capacity()` slots. One array in grain order, not a vector per grain, so the
 /// contact gather reads them as it walks the grains. A grain that keeps more contacts than the
 /// capacity is told so by keep(); grow() then makes room for all (the same contacts, any threads).
 template <int D>
@@ -103,7 +104,8 @@ struct Grains {
   std::vector<double> radius;     ///< dry radius R [m]
   std::vector<double> dry_mass;   ///< [kg] (2-D: per metre of depth)
   std::vector<double> water;      ///< water held [kg]
-  ContactHistory<D> springs;      ///< each grain's contacts of the last step, from its side
+  ContactHistory<D> springs;      ///< contacts between grains of the last step, each kept by its lower grain
+  ContactHistory<D> wall_springs; ///< each grain's contacts with walls of the last step
 
   std::size_t size() const { return x.size(); }
   /// Appends a grain at rest; its dry mass is density times its volume.
@@ -112,6 +114,7 @@ struct Grains {
     omega.push_back(Spin<D>::Zero()); torque.push_back(Spin<D>::Zero());
     radius.push_back(r); dry_mass.push_back(density * volume_of(r)); water.push_back(0.0);
     springs.add_grain();
+    wall_springs.add_grain();
     return x.size() - 1;
   }
   static double volume_of(double r) { return D == 3 ? 4.0 / 3.0 * pi * r * r * r : pi * r * r; }
