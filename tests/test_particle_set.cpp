@@ -80,4 +80,46 @@ BOOST_AUTO_TEST_CASE(truncating_what_was_appended_restores_the_layout) {
   BOOST_TEST(ps.layout() != three);
 }
 
+BOOST_AUTO_TEST_CASE(permute_puts_every_field_of_every_particle_where_the_order_says) {
+  // Orders of the kinds a run makes: a shuffle, a removal (compact), the migration reorder of a
+  // decomposed run (particles gone and arrivals merged in front of a block of walls that only
+  // shifts), and the whole set shifted as one block. Each field is compared with the definition
+  // new[k] = old[order[k]], for a vector field, a number and a byte field.
+  const std::size_t n = 40;
+  std::vector<std::vector<std::size_t>> orders;
+  std::vector<std::size_t> shuffle(n);
+  for (std::size_t k = 0; k < n; ++k) shuffle[k] = (7 * k + 3) % n;
+  orders.push_back(shuffle);
+  std::vector<std::size_t> removal;
+  for (std::size_t k = 0; k < n; ++k)
+    if (k % 5 != 2) removal.push_back(k);
+  orders.push_back(removal);
+  std::vector<std::size_t> migration = {0, 38, 1, 3, 4, 39, 6};  // 2 and 5 left, 38 and 39 arrived
+  for (std::size_t k = 8; k < 38; ++k) migration.push_back(k);     // then the walls, one block
+  orders.push_back(migration);
+  std::vector<std::size_t> block;
+  for (std::size_t k = 3; k < n; ++k) block.push_back(k);
+  orders.push_back(block);
+  orders.push_back({n - 1});
+  for (const auto& order : orders) {
+    ParticleSet<3> ps;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = ps.append();
+      ps.x[i] = Vec<3>(k, 2.0 * k, -1.0 * k);
+      ps.m[i] = 0.5 + k;
+      ps.rough[i] = static_cast<std::uint8_t>(k);
+    }
+    const std::vector<std::int64_t> ids(ps.id.begin(), ps.id.end());
+    ps.permute(order);
+    BOOST_TEST_REQUIRE(ps.size() == order.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const auto o = static_cast<double>(order[k]);
+      BOOST_TEST((ps.x[k] == Vec<3>(o, 2.0 * o, -o)));
+      BOOST_TEST(ps.m[k] == 0.5 + o);
+      BOOST_TEST(ps.rough[k] == order[k]);
+      BOOST_TEST(ps.id[k] == ids[order[k]]);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -1,6 +1,7 @@
 #include "core/particle_set.hpp"
 
 #include <atomic>
+#include <cstddef>
 #include <cstring>
 #include <omp.h>
 #include <type_traits>
@@ -110,12 +111,29 @@ bool ParticleSet<D>::compact() {
 
 template <int D>
 void ParticleSet<D>::permute(const std::vector<std::size_t>& order) {
-  const auto n = static_cast<std::int64_t>(order.size());
-  visit_fields([&order, n](std::string_view, auto& field) {
-    std::decay_t<decltype(field)> out(order.size());
+  // The order's longest tail that takes one contiguous block of particles (the fixed walls a
+  // decomposed run keeps after its moving particles, shifted by the migrations) moves as one block;
+  // the particles before it are gathered into a scratch buffer kept by the thread between calls
+  // and copied back into the field's own storage. No allocation and no fresh pages per call (a
+  // decomposed run reorders its particles at every step in which some migrate), and the fields
+  // keep their capacity, so the halo appended after a reorder does not reallocate them.
+  thread_local std::vector<std::byte> scratch;
+  std::size_t tail = order.size();  // then: order[k] = order[tail] + (k - tail) for every k >= tail
+  while (tail > 1 && order[tail - 1] == order[tail - 2] + 1) --tail;
+  if (tail > 0) --tail;
+  const std::size_t block = order.empty() ? 0 : order[tail];
+  const auto gathered = static_cast<std::int64_t>(tail);
+  visit_fields([&](std::string_view, auto& field) {
+    constexpr std::size_t bytes = sizeof(typename std::decay_t<decltype(field)>::value_type);
+    if (scratch.size() < tail * bytes) scratch.resize(tail * bytes);
+    std::byte* out = scratch.data();
 #pragma omp parallel for schedule(static)
-    for (std::int64_t k = 0; k < n; ++k) out[k] = field[order[k]];
-    field.swap(out);
+    for (std::int64_t k = 0; k < gathered; ++k) std::memcpy(out + k * bytes, static_cast<const void*>(&field[order[k]]), bytes);
+    if (tail < order.size())
+      std::memmove(static_cast<void*>(&field[tail]), static_cast<const void*>(&field[block]), (order.size() - tail) * bytes);
+    field.resize(order.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t k = 0; k < gathered; ++k) std::memcpy(static_cast<void*>(&field[k]), out + k * bytes, bytes);
   });
   relayout();
 }

@@ -1,5 +1,6 @@
 #include "parallel/comm.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <stdexcept>
@@ -108,6 +109,16 @@ void Comm::sum(std::span<std::uint64_t> values) const {
 #else
   (void)values;
 #endif
+}
+
+void Comm::sum_below(std::span<std::uint64_t> values) const {
+#ifdef SANDCASTLE_HAS_MPI
+  if (size_ > 1) {
+    std::vector<std::uint64_t> mine(values.begin(), values.end());
+    MPI_Exscan(mine.data(), values.data(), count_of(values.size()), MPI_UINT64_T, MPI_SUM, MPI_COMM_WORLD);
+  }
+#endif
+  if (rank_ == 0) std::fill(values.begin(), values.end(), std::uint64_t{0});  // MPI leaves rank 0's undefined
 }
 
 std::vector<std::string> Comm::exchange(const std::vector<std::string>& send) const {

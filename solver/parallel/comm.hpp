@@ -25,6 +25,8 @@ class Comm {
   void min(std::span<std::uint64_t> values) const;
   /// Element-wise sum over the ranks, in place (integers: exact in any order).
   void sum(std::span<std::uint64_t> values) const;
+  /// Element-wise sum over the ranks below this one, in place (rank 0: zeros; integers: exact).
+  void sum_below(std::span<std::uint64_t> values) const;
   /// Sends send[r] to rank r and returns what each rank sent to this one, by source rank.
   std::vector<std::string> exchange(const std::vector<std::string>& send) const;
   /// Every rank's `mine`, by rank, on every rank.

@@ -71,7 +71,8 @@ int Decomposition<D>::owner(std::int64_t c) const {
 
 template <int D>
 void Decomposition<D>::find_grid(const ParticleSet<D>& ps, bool global) {
-  GridBounds<D> b = NeighbourGrid<D>::bounds(ps, all_indices(ps.size()));
+  if (all_.size() != ps.size()) all_ = all_indices(ps.size());  // kept: no allocation per step
+  GridBounds<D> b = NeighbourGrid<D>::bounds(ps, all_);
   if (!global) {
     std::vector<double> m(2 * D + 1);
     for (int d = 0; d < D; ++d) {
@@ -177,18 +178,43 @@ void Decomposition<D>::begin_step(ParticleSet<D>& ps, long step, bool sort) {
 
 template <int D>
 void Decomposition<D>::sort_keys(ParticleSet<D>& ps) {
-  // Slot (inert, cell) in the one-process storage order: the particles that move first, by cell,
-  // then the inert ones by cell (NeighbourGrid::storage_order); within a slot by the old key.
-  const auto slot = [&](std::size_t i) {
-    return static_cast<std::size_t>((ps.inert(i) ? grid_.cells : 0) + grid_.cell_of(ps.x[i]));
-  };
-  std::vector<std::uint64_t> start(2 * static_cast<std::size_t>(grid_.cells), 0);
-  for (std::size_t i = 0; i < ps.size(); ++i) ++start[slot(i)];
-  comm_.sum(start);
-  std::exclusive_scan(start.begin(), start.end(), start.begin(), std::uint64_t{0});
-  // A slot's particles all lie on this rank (a slab is whole cell layers), here in old key order.
-  for (std::size_t i = 0; i < ps.size(); ++i) key_[i] = start[slot(i)]++;
-  reorder(ps, key_order(key_));
+  // The one-process storage sort orders the particles by slot (inert, cell), cells in linear order
+  // (axis 0 fastest), and within a slot by old key (NeighbourGrid::storage_order). Group the slots
+  // in rows: the inert bit and the cell's coordinates along the axes slower than the cut axis.
+  // Within a row the slots run along the cut axis, and a slab is one range of it, so a row holds
+  // the ranks' slots in rank order. A particle's new key is the count of particles in the rows
+  // before its own (all ranks), of the lower ranks' particles in its row, and of this rank's before
+  // it in the row's (slot, old key) order: integer sums over the rows only.
+  std::int64_t faster = 1, slower = 1;
+  for (int d = 0; d < axis_; ++d) faster *= grid_.dims[d];
+  for (int d = axis_ + 1; d < D; ++d) slower *= grid_.dims[d];
+  const std::int64_t along = grid_.dims[axis_];
+  const std::size_t n = ps.size(), rows = 2 * static_cast<std::size_t>(slower);
+  std::vector<std::uint32_t> row(n);
+  std::vector<std::uint64_t> place(n), count(rows, 0);  // place: the slot's position in its row
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::int64_t cell = grid_.cell_of(ps.x[i]);
+    row[i] = static_cast<std::uint32_t>((ps.inert(i) ? slower : 0) + cell / (faster * along));
+    place[i] = static_cast<std::uint64_t>(cell % (faster * along));
+    ++count[row[i]];
+  }
+  std::vector<std::uint64_t> first = count, total = count;  // first: this rank's first key per row
+  comm_.sum_below(first);
+  comm_.sum(total);
+  std::vector<std::size_t> local(rows + 1, 0);  // this rank's particles: where each row starts in `order`
+  for (std::size_t r = 0, before = 0; r < rows; ++r) {
+    first[r] += before;
+    before += total[r];
+    local[r + 1] = local[r] + count[r];
+  }
+  std::vector<std::size_t> order(n), fill(local.begin(), local.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) order[fill[row[i]]++] = i;  // by row, each in old key order
+  for (std::size_t r = 0; r < rows; ++r) {
+    const auto begin = order.begin() + static_cast<std::ptrdiff_t>(local[r]), end = order.begin() + static_cast<std::ptrdiff_t>(local[r + 1]);
+    std::sort(begin, end, [&](std::size_t a, std::size_t b) { return place[a] < place[b] || (place[a] == place[b] && a < b); });
+    for (auto k = begin; k != end; ++k) key_[*k] = first[r] + static_cast<std::uint64_t>(k - begin);
+  }
+  reorder(ps, order);
 }
 
 template <int D>

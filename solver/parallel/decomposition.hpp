@@ -7,8 +7,8 @@
 // every cell's particles must lie in storage in the order the one-process run stores them. Each
 // particle carries its position in that storage as its key: the scene's index at the start, and at
 // each storage sort of the simulator (Simulator::kSortEvery) its place in the one-process sort — its
-// slot (inert, cell) first, then its old key — computed from the slots' counts summed over the
-// ranks. A slab is a whole number of cell layers, so a cell's particles all belong to one rank:
+// slot (inert, cell) first, then its old key — computed from the counts of the rows of slots summed
+// over all ranks and over the lower ranks (sort_keys). A slab is a whole number of cell layers, so a cell's particles all belong to one rank:
 // every rank keeps its own particles in key order and appends the halo after them, each source
 // rank's in key order. Every collective is exact: minima and maxima (the grid's bounds, the step
 // size), integer sums (counts), and copies of bytes.
@@ -96,6 +96,7 @@ class Decomposition {
   int axis_ = 0;
   std::vector<std::int64_t> cut_;  // rank r's slab: axis cells [cut_[r - 1], cut_[r]) (r = 0: from −∞; last: to +∞)
   std::vector<std::uint64_t> key_;
+  std::vector<std::uint32_t> all_;  // 0, 1, ..., n - 1 for this rank's n particles (find_grid)
   std::size_t own_ = kNoHalo;  // during a step: this rank's own particles, the halo after them
   std::vector<std::vector<std::uint32_t>> send_, recv_;  // per rank: indices of ps sent to it / received from it in the halo
   DecompositionAccount account_;
