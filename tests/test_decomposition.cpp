@@ -42,9 +42,11 @@ test::ProcessResult sandcastle(int ranks, std::vector<std::string> args, double 
 }
 
 /// The case `name` of cases/ ending at `end` [s] instead (its start-up relaxation and the
-/// observer's averaging window shortened to fit), written to a fresh folder; its path.
-std::string shortened_case(const std::string& name, double end) {
+/// observer's averaging window shortened to fit), with `patch` merged in (RFC 7386), written to a
+/// fresh folder; its path.
+std::string shortened_case(const std::string& name, double end, const json& patch = json::object()) {
   json c = read_json_file(cases + "/" + name + "/case.json");
+  c.merge_patch(patch);
   c["time"]["end"] = end;
   if (c["time"].value("relax_until", 0.0) >= end) c["time"]["relax_until"] = end / 2;
   if (c["validation"].value("average_time", 0.0) >= end) c["validation"]["average_time"] = end / 3;
@@ -238,8 +240,8 @@ BOOST_AUTO_TEST_CASE(a_case_with_porous_flow_over_2_ranks_stops_with_exit_code_2
 // Sand over ranks (sand/clusters_over_ranks.hpp): the sand case `name`, shortened to end at `end`
 // [s], ends bitwise in the one-process state at 2 and 3 ranks, while at 2 ranks sand particles
 // migrate and rigid clusters have members on both ranks (their sums gathered in the one-process order).
-void sand_runs_agree(const std::string& name, double end) {
-  const std::string file = shortened_case(name, end);
+void sand_runs_agree(const std::string& name, double end, const json& patch = json::object()) {
+  const std::string file = shortened_case(name, end, patch);
   const std::vector<Printed> p = runs_agree(file);
   BOOST_TEST(p[1].migrated > 0);
   BOOST_TEST(p[1].clusters_across > 0);
@@ -262,6 +264,15 @@ BOOST_AUTO_TEST_CASE(angle_of_repose_over_2_and_3_ranks_is_the_one_process_run) 
 BOOST_AUTO_TEST_CASE(rigid_cluster_over_2_and_3_ranks_is_the_one_process_run) {
   if (!have_mpi()) return;
   sand_runs_agree("rigid_cluster", 0.1);
+}
+
+// The same block landing on a no-slip floor: the floor's contact impulses on a cluster cut by the
+// slabs (resolve_wall_contacts) swept in the one-process contact order.
+BOOST_AUTO_TEST_CASE(rigid_cluster_landing_on_a_floor_over_2_and_3_ranks_is_the_one_process_run) {
+  if (!have_mpi()) return;
+  const json floor = {{"tank", {{"min", {-0.15, -0.03}}, {"max", {0.15, 0.2}},
+                                {"sides", {{"x-", "slip"}, {"x+", "slip"}, {"y-", "no_slip"}, {"y+", "open"}}}}}};
+  sand_runs_agree("rigid_cluster", 0.15, floor);
 }
 
 // Three spinning rigid blocks in 3-D: the middle one turns across the cut of 2 ranks (at 3 ranks the
