@@ -1,6 +1,7 @@
 // One SPH scene decomposed over MPI ranks (solver/parallel/decomposition.hpp, docs/scaling.md):
 // `mpirun -n N sandcastle run` gives bitwise the one-process run (state checksum and final frame)
-// at 2 and 3 ranks while particles migrate and the slabs are rebalanced, a checkpoint of 3 ranks
+// at 2 and 3 ranks while particles migrate and the slabs are rebalanced, of water and of sand
+// (frictional stress, rigid clusters with members on several ranks), a checkpoint of 3 ranks
 // resumes on 2 with the uninterrupted checksum, `bench` reports the halo's share, a file rank 0
 // cannot write ends every rank with the error, and a case with a feature that is not decomposed
 // stops with exit code 2 before it starts.
