@@ -1,6 +1,7 @@
 // One SPH scene decomposed over MPI ranks (solver/parallel/decomposition.hpp, docs/scaling.md):
 // `mpirun -n N sandcastle run` gives bitwise the one-process run (state checksum and final frame)
-// at 2 and 3 ranks while particles migrate and the slabs are rebalanced, a checkpoint of 3 ranks
+// at 2 and 3 ranks while particles migrate and the slabs are rebalanced, of water and of sand
+// (frictional stress, rigid clusters with members on several ranks), a checkpoint of 3 ranks
 // resumes on 2 with the uninterrupted checksum, `bench` reports the halo's share, a file rank 0
 // cannot write ends every rank with the error, and a case with a feature that is not decomposed
 // stops with exit code 2 before it starts.
@@ -42,9 +43,11 @@ test::ProcessResult sandcastle(int ranks, std::vector<std::string> args, double 
 }
 
 /// The case `name` of cases/ ending at `end` [s] instead (its start-up relaxation and the
-/// observer's averaging window shortened to fit), written to a fresh folder; its path.
-std::string shortened_case(const std::string& name, double end) {
+/// observer's averaging window shortened to fit), with `patch` merged in (RFC 7386), written to a
+/// fresh folder; its path.
+std::string shortened_case(const std::string& name, double end, const json& patch = json::object()) {
   json c = read_json_file(cases + "/" + name + "/case.json");
+  c.merge_patch(patch);
   c["time"]["end"] = end;
   if (c["time"].value("relax_until", 0.0) >= end) c["time"]["relax_until"] = end / 2;
   if (c["validation"].value("average_time", 0.0) >= end) c["validation"]["average_time"] = end / 3;
@@ -66,10 +69,11 @@ std::size_t count(const std::string& text, const std::string& what) {
   return n;
 }
 
-/// What `run` printed: the checksum, and the decomposition's rebalances and migrated particles.
+/// What `run` printed: the checksum, and the decomposition's rebalances, migrated particles and
+/// rigid clusters with members on several ranks (summed over the steps).
 struct Printed {
   std::string checksum;
-  long rebalances = -1, migrated = -1;
+  long rebalances = -1, migrated = -1, clusters_across = -1;
 };
 Printed printed(const test::ProcessResult& r) {
   Printed p;
@@ -78,6 +82,8 @@ Printed printed(const test::ProcessResult& r) {
   const std::string migrated = match(r.out, "rebalances, (\\d+) particles migrated");
   if (!rebalances.empty()) p.rebalances = std::stol(rebalances);
   if (!migrated.empty()) p.migrated = std::stol(migrated);
+  const std::string across = match(r.out, "(\\d+) rigid clusters across ranks");
+  if (!across.empty()) p.clusters_across = std::stol(across);
   return p;
 }
 
@@ -219,17 +225,78 @@ BOOST_AUTO_TEST_CASE(bench_over_2_ranks_reports_the_halo_share_and_the_one_proce
   fs::remove_all(root);
 }
 
-// Sand is not decomposed yet: over 2 ranks the run stops before it starts, with exit code 2 and a
-// message naming the case file, the block and the feature; nothing is written.
-BOOST_AUTO_TEST_CASE(a_case_with_sand_over_2_ranks_stops_with_exit_code_2) {
+// Porous flow is not decomposed yet: over 2 ranks the run stops before it starts, with exit code 2
+// and a message naming the case file, the block and the feature; nothing is written.
+BOOST_AUTO_TEST_CASE(a_case_with_porous_flow_over_2_ranks_stops_with_exit_code_2) {
   if (!have_mpi()) return;
-  const std::string out = test::fresh_path("decomposed_sand");
-  const test::ProcessResult r = sandcastle(2, {"run", cases + "/column_collapse/case.json", "--out", out});
+  const std::string out = test::fresh_path("decomposed_porous");
+  const test::ProcessResult r = sandcastle(2, {"run", cases + "/wet_sand_collapse/case.json", "--out", out});
   BOOST_TEST(r.exit_code == 2);
-  BOOST_TEST(r.err.find("/blocks/0") != std::string::npos);
-  BOOST_TEST(r.err.find("sand") != std::string::npos);
+  BOOST_TEST(r.err.find("/porous") != std::string::npos);
+  BOOST_TEST(r.err.find("porous flow") != std::string::npos);
   BOOST_TEST(r.err.find("not decomposed") != std::string::npos);
   BOOST_TEST(!fs::exists(out));
+}
+
+// Sand over ranks (sand/clusters_over_ranks.hpp): the sand case `name`, shortened to end at `end`
+// [s], ends bitwise in the one-process state at 2 and 3 ranks, while at 2 ranks sand particles
+// migrate and rigid clusters have members on both ranks (their sums gathered in the one-process order).
+void sand_runs_agree(const std::string& name, double end, const json& patch = json::object()) {
+  const std::string file = shortened_case(name, end, patch);
+  const std::vector<Printed> p = runs_agree(file);
+  BOOST_TEST(p[1].migrated > 0);
+  BOOST_TEST(p[1].clusters_across > 0);
+  fs::remove_all(fs::path(file).parent_path());
+}
+
+// The granular column collapsing over the floor: frictional stress and wall friction across the cut.
+BOOST_AUTO_TEST_CASE(column_collapse_over_2_and_3_ranks_is_the_one_process_run) {
+  if (!have_mpi()) return;
+  sand_runs_agree("column_collapse", 0.2);
+}
+
+// The pile spreading to its angle of repose.
+BOOST_AUTO_TEST_CASE(angle_of_repose_over_2_and_3_ranks_is_the_one_process_run) {
+  if (!have_mpi()) return;
+  sand_runs_agree("angle_of_repose", 0.2);
+}
+
+// A cohesive block falling freely as one rigid cluster cut by the slabs.
+BOOST_AUTO_TEST_CASE(rigid_cluster_over_2_and_3_ranks_is_the_one_process_run) {
+  if (!have_mpi()) return;
+  sand_runs_agree("rigid_cluster", 0.1);
+}
+
+// The same block landing on a no-slip floor: the floor's contact impulses on a cluster cut by the
+// slabs (resolve_wall_contacts) swept in the one-process contact order.
+BOOST_AUTO_TEST_CASE(rigid_cluster_landing_on_a_floor_over_2_and_3_ranks_is_the_one_process_run) {
+  if (!have_mpi()) return;
+  const json floor = {{"tank", {{"min", {-0.15, -0.03}}, {"max", {0.15, 0.2}},
+                                {"sides", {{"x-", "slip"}, {"x+", "slip"}, {"y-", "no_slip"}, {"y+", "open"}}}}}};
+  sand_runs_agree("rigid_cluster", 0.15, floor);
+}
+
+// Three spinning rigid blocks in 3-D: the middle one turns across the cut of 2 ranks (at 3 ranks the
+// cuts fall between the blocks).
+BOOST_AUTO_TEST_CASE(rigid_spin_3d_over_2_and_3_ranks_is_the_one_process_run) {
+  if (!have_mpi()) return;
+  sand_runs_agree("rigid_spin_3d", 0.2);
+}
+
+// A checkpoint of a sand run written by 3 ranks resumes on 2 with the uninterrupted checksum.
+BOOST_AUTO_TEST_CASE(sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum) {
+  if (!have_mpi()) return;
+  const std::string file = shortened_case("column_collapse", 0.2);
+  const std::string root = test::fresh_path("decomposed_sand_restart");
+  const test::ProcessResult straight = sandcastle(1, {"run", file, "--out", root + "/straight"});
+  const test::ProcessResult three = sandcastle(3, {"run", file, "--out", root + "/three", "--checkpoint-every", "400"});
+  BOOST_TEST(printed(three).checksum == printed(straight).checksum);
+  const std::string ckpt = root + "/three/checkpoint_00000400.ckpt";
+  BOOST_TEST_REQUIRE(fs::exists(ckpt));
+  const test::ProcessResult resumed = sandcastle(2, {"run", file, "--out", root + "/resumed", "--resume", ckpt});
+  BOOST_TEST(printed(resumed).checksum == printed(straight).checksum);
+  fs::remove_all(root);
+  fs::remove_all(fs::path(file).parent_path());
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -63,7 +63,8 @@ int run_command(const std::string& case_file, const std::string& out_dir, const 
             << " s, checksum " << r.checksum << "\n";
   if (const auto& a = r.decomposition)
     std::cout << "  decomposed over " << a->ranks << " ranks: " << a->rebalances << " rebalances, " << a->migrated
-              << " particles migrated, " << a->halo_particles << " halo particles received over " << a->steps << " steps\n";
+              << " particles migrated, " << a->halo_particles << " halo particles received over " << a->steps << " steps, " << a->clusters_across_ranks
+              << " rigid clusters across ranks\n";
   for (const auto& [name, m] : r.observed.metrics)
     std::cout << "  " << name << " = " << m.value << "  limit " << m.limit.to_json().dump() << (m.pass() ? "" : "  FAIL")
               << "\n";

@@ -31,6 +31,7 @@ struct DecompositionAccount {
   long rebalances = 0;      ///< slab choices that moved a border (every Decomposition::kRebalanceEvery steps at most; the first included)
   long migrated = 0;        ///< particles that moved to another rank's slab
   long halo_particles = 0;  ///< halo copies received, over all steps
+  long clusters_across_ranks = 0;  ///< rigid sand clusters with members on several ranks, over all steps (sand/clusters_over_ranks.hpp)
   long steps = 0;
 };
 

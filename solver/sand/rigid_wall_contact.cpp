@@ -72,10 +72,10 @@ struct ContactRow {
 };
 
 /// Contacts whose gap a member cannot close within the step at this many times the largest point
-/// speed of the cluster's unconstrained motion are left out of the sweeps: their impulse would stay
-/// zero (the impulses of resting contact only take kinetic energy out of the body). Without this
-/// every wall particle within a member's support would be a contact, and the sweeps would run to
-/// their limit over tens of thousands of them.
+/// speed of the cluster's unconstrained motion are left out of the sweeps (wall_contact_reach): their
+/// impulse would stay zero (the impulses of resting contact only take kinetic energy out of the
+/// body). Without this every wall particle within a member's support would be a contact, and the
+/// sweeps would run to their limit over tens of thousands of them.
 constexpr double kContactReachFactor = 2.0;
 
 /// Clusters of at least this many members have their contacts gathered by chunks of kChunk
@@ -190,6 +190,12 @@ ContactImpulse<D> resolve_wall_contacts(ClusterMotion<D>& motion, std::span<cons
 }
 
 template <int D>
+double wall_contact_reach(const ParticleSet<D>& ps, std::span<const std::size_t> members, const ClusterMotion<D>& motion,
+                          double dt) {
+  return kContactReachFactor * largest_point_speed<D>(ps, members, motion) * dt;
+}
+
+template <int D>
 void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
                                  std::span<const std::vector<std::size_t>> clusters,
                                  std::vector<ClusterMotion<D>>& motions, double dt, double mu) {
@@ -200,7 +206,7 @@ void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D
 #pragma omp for schedule(dynamic)
     for (std::int64_t c = 0; c < n; ++c) {
       if (std::ssize(clusters[c]) >= kLargeCluster) continue;
-      const double reach = kContactReachFactor * largest_point_speed<D>(ps, clusters[c], motions[c]) * dt;
+      const double reach = wall_contact_reach<D>(ps, clusters[c], motions[c], dt);
       contacts.clear();
       append_cluster_wall_contacts<D>(ps, nb, clusters[c], motions[c].centre, reach, contacts);
       resolve_wall_contacts<D>(motions[c], contacts, clusters[c].size() > 1, dt, mu);
@@ -210,7 +216,7 @@ void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D
   std::vector<WallContact<D>> contacts;
   for (std::int64_t c = 0; c < n; ++c) {
     if (std::ssize(clusters[c]) < kLargeCluster) continue;
-    const double reach = kContactReachFactor * largest_point_speed<D>(ps, clusters[c], motions[c]) * dt;
+    const double reach = wall_contact_reach<D>(ps, clusters[c], motions[c], dt);
     gather_wall_contacts_in_parallel<D>(ps, nb, clusters[c], motions[c].centre, reach, contacts);
     resolve_wall_contacts<D>(motions[c], contacts, true, dt, mu);
   }
@@ -221,6 +227,8 @@ void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D
                                                                 std::span<const std::size_t>, const Vec<D>&, double); \
   template ContactImpulse<D> resolve_wall_contacts<D>(ClusterMotion<D>&, std::span<const WallContact<D>>, bool,     \
                                                       double, double, double, int);                                          \
+  template double wall_contact_reach<D>(const ParticleSet<D>&, std::span<const std::size_t>, const ClusterMotion<D>&,  \
+                                        double);                                                                      \
   template void constrain_clusters_by_walls<D>(const ParticleSet<D>&, const NeighbourGrid<D>&,                        \
                                                std::span<const std::vector<std::size_t>>, std::vector<ClusterMotion<D>>&, \
                                                double, double);

@@ -71,6 +71,14 @@ template <int D>
 ContactImpulse<D> resolve_wall_contacts(ClusterMotion<D>& motion, std::span<const WallContact<D>> contacts, bool spins,
                                         double dt, double mu, double tolerance = 1e-10, int max_sweeps = 200);
 
+/// How far from a wall particle a member of the cluster may be (its gap, [m]) for the contact to
+/// enter the sweeps of step dt: twice the largest point speed |v_cm| + |ω| |r| of the members in the
+/// cluster's unconstrained motion, times dt. A farther contact cannot close within the step, so its
+/// impulse would stay zero; leaving it out keeps the sweeps to the few contacts that act.
+template <int D>
+double wall_contact_reach(const ParticleSet<D>& ps, std::span<const std::size_t> members, const ClusterMotion<D>& motion,
+                          double dt);
+
 /// resolve_wall_contacts for every cluster (parallel over clusters; each writes only its motion),
 /// with the Coulomb coefficient mu of rough walls.
 template <int D>

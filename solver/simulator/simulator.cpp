@@ -70,8 +70,8 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params, std::
   last_dt_ = params_.dt_max;
   check_state();
   if (!ranks || ranks->size() == 1) return;
-  if (has_sand_ || params_.porous || params_.adaptive)
-    throw std::logic_error("the domain decomposition runs water and fixed walls only");
+  if (params_.porous || params_.adaptive)
+    throw std::logic_error("the domain decomposition runs water, sand and fixed walls only");
   dd_.emplace(*ranks);
   dd_->scatter(ps_);
 }
@@ -194,8 +194,11 @@ template <int D>
 void Simulator<D>::compute_sand_forces() {
   add_sand_forces(ps_, nb_, params_.sand, params_.water, params_.eos.sound_speed, last_dt_, correction_, wall_force_);
   add_water_sand_contact(ps_, nb_, params_.sand, params_.eos.sound_speed, last_dt_);
+  refresh_halo(ps_.force);  // the yield test's predicted velocities read the neighbours' forces so far
   update_sand_state(ps_, nb_, params_.sand, g_.norm(), last_dt_, sand_stress_, predicted_velocity_,
                     params_.porous ? params_.porous->stress_scale : 0.0, params_.porous ? params_.porous->pore_stiffness : 0.0);
+  refresh_halo(sand_stress_);  // the friction reads the neighbours' stress
+  refresh_halo(ps_.rigid);     // the clusters join rigid neighbours
   add_frictional_forces(ps_, nb_, sand_stress_, params_.water.gradient_correction ? correction_ : MatArray<D>{});
 }
 
@@ -208,8 +211,12 @@ void Simulator<D>::integrate(double dt) {
   std::vector<ClusterMotion<D>> motions;
   if (has_sand_) {
     auto tc = timers_.time(Stage::Clusters);
-    motions = cluster_motions(ps_, clusters_, dt, params_.sand.inertia);  // eqs 13-18, from the velocities before the step
-    constrain_clusters_by_walls<D>(ps_, nb_, clusters_, motions, dt, params_.sand.wall_mu());
+    if (dd_) {
+      motions = clusters_over_ranks_.motions(clusters_, dt, params_.sand.inertia, params_.sand.wall_mu());
+    } else {
+      motions = cluster_motions(ps_, clusters_, dt, params_.sand.inertia);  // eqs 13-18, from the velocities before the step
+      constrain_clusters_by_walls<D>(ps_, nb_, clusters_, motions, dt, params_.sand.wall_mu());
+    }
   }
   if (tank_walls_) x_start_.resize(ps_.size());
 #pragma omp parallel for schedule(static)
@@ -248,7 +255,8 @@ double Simulator<D>::step() {
       add_wall_friction(ps_, wall_force_, params_.sand.wall_mu(), dt);
     }
     auto tc = timers_.time(Stage::Clusters);
-    clusters_ = params_.sand.rigid_clusters ? find_clusters(ps_, nb_) : Clusters{};
+    if (!params_.sand.rigid_clusters) clusters_.clear();
+    else clusters_ = dd_ ? clusters_over_ranks_.find(ps_, nb_, *dd_) : find_clusters(ps_, nb_);
   }
   integrate(dt);
   last_dt_ = dt;

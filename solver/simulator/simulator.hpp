@@ -13,6 +13,7 @@
 #include "parallel/decomposition.hpp"
 #include "porous/porous_flow.hpp"
 #include "sand/clusters.hpp"
+#include "sand/clusters_over_ranks.hpp"
 #include "sand/sand_forces.hpp"
 #include "sph/gradient_correction.hpp"
 
@@ -48,7 +49,7 @@ class Simulator {
  public:
   /// `particles`: the whole scene. With `ranks` of more than one rank, the scene is decomposed over
   /// them (parallel/decomposition.hpp): every rank passes the same scene and keeps its share, and
-  /// the run is bitwise the one-process run. Decomposed: water and fixed walls only (no sand, porous
+  /// the run is bitwise the one-process run. Decomposed: water, sand and fixed walls only (no porous
   /// flow or adaptivity; the caller refuses those first, check_decomposable in method/registry.hpp).
   Simulator(ParticleSet<D> particles, SimulationParams params, std::optional<Comm> ranks = std::nullopt);
 
@@ -85,6 +86,8 @@ class Simulator {
   const AdaptAccount& adapt_account() const { return adapt_account_; }
   /// The decomposition over MPI ranks; null in one process.
   const Decomposition<D>* decomposition() const { return dd_ ? &*dd_ : nullptr; }
+  /// Decomposed runs: rigid clusters with members on more than one rank, summed over the steps.
+  long clusters_across_ranks() const { return clusters_over_ranks_.across_ranks(); }
   /// Changes whenever the particles may have changed (a step, mutable access).
   long revision() const { return revision_; }
 
@@ -134,7 +137,8 @@ class Simulator {
   std::optional<TankWalls<D>> tank_walls_;  // closed sides of the case's tank (collision planes)
   VecArrayOf<D> x_start_;     // positions of the moving particles before the step's move (the collision's path start)
   PorousWork<D> porous_work_;  // buffers of the porous step
-  Clusters clusters_;         // rigid sand clusters of the current step
+  Clusters clusters_;         // rigid sand clusters of the current step (decomposed: of clusters_over_ranks_'s particles)
+  ClustersOverRanks<D> clusters_over_ranks_;  // decomposed runs: the clusters of the whole scene
   bool has_sand_ = false;
   double last_dt_ = 0.0;      // step size of the previous step (the rigid stress, eq 12a, needs one)
   SimulationParams params_;

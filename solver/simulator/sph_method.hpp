@@ -35,12 +35,11 @@ class SphMethod final : public Method<D> {
 
   /// The simulator itself, for the SPH probe (sph_probe.hpp) and SPH's own tests.
   const Simulator<D>& simulator() const { return sim_; }
-
- private:
   /// Every particle of the run, in the one-process order: the simulator's own or, decomposed over
   /// MPI ranks, gathered from every rank (collective; kept until the particles change).
   const ParticleSet<D>& state() const;
 
+ private:
   mutable ParticleSet<D> gathered_;
   mutable long gathered_revision_ = -1;
   Simulator<D> sim_;

@@ -17,7 +17,7 @@
 namespace sc {
 
 template <int D>
-class Simulator;
+class SphMethod;
 
 /// Throws InputError (the case file, JSON path /method) unless the case runs with SPH: `who`
 /// (an observer, a report) needs what only SPH provides. Called before anything is allocated.
@@ -26,8 +26,9 @@ void require_sph(const CaseSpec& spec, std::string_view who);
 template <int D>
 class SphProbe {
  public:
-  explicit SphProbe(const Simulator<D>& sim) : sim_(sim) {}
-  /// Every field of SPH's particles (same order as the run's ParticleView).
+  explicit SphProbe(const SphMethod<D>& method) : method_(method) {}
+  /// Every field of SPH's particles (same order as the run's ParticleView: decomposed over MPI
+  /// ranks, every rank's gathered in the one-process order; collective then).
   const ParticleSet<D>& particles() const;
   /// The neighbour lists of the last step (empty before the first step).
   const NeighbourGrid<D>& neighbours() const;
@@ -42,7 +43,7 @@ class SphProbe {
   std::optional<DecompositionAccount> decomposition() const;
 
  private:
-  const Simulator<D>& sim_;
+  const SphMethod<D>& method_;
 };
 
 /// The SPH probe of `method`. Throws std::logic_error naming `who` if the run does not use SPH
