@@ -91,7 +91,6 @@ void check_decomposable(const CaseSpec& spec) {
   for (std::size_t m = 0; m < spec.meshes.size(); ++m)
     if (spec.meshes[m].phase == Phase::Sand)
       throw InputError(spec.file, "/meshes/" + std::to_string(m), "sand (rigid clusters, frictional stress)" + rule);
-  if (spec.porous) throw InputError(spec.file, "/porous", "porous flow" + rule);
   if (spec.adaptive) throw InputError(spec.file, "/adaptive", "adaptive sampling (split and merge)" + rule);
 }
 
