@@ -65,6 +65,9 @@ int run_command(const std::string& case_file, const std::string& out_dir, const 
     std::cout << "  decomposed over " << a->ranks << " ranks: " << a->rebalances << " rebalances, " << a->migrated
               << " particles migrated, " << a->halo_particles << " halo particles received over " << a->steps << " steps, " << a->clusters_across_ranks
               << " rigid clusters across ranks\n";
+  if (const auto& a = r.decomposition; a && a->removed + a->added > 0)
+    std::cout << "  compactions: " << a->removed << " particles removed, " << a->added << " added, " << a->at_border
+              << " of them by a particle next to another rank's slab\n";
   for (const auto& [name, m] : r.observed.metrics)
     std::cout << "  " << name << " = " << m.value << "  limit " << m.limit.to_json().dump() << (m.pass() ? "" : "  FAIL")
               << "\n";

@@ -104,6 +104,10 @@ class ParticleSet {
   void queue_remove(std::size_t i);
   /// Particles to be created at the next compact(); fill them with additions().append().
   ParticleSet& additions();
+  /// Whether particle i is queued for deletion at the next compact().
+  bool queued_for_removal(std::size_t i) const { return remove_flag_.size() == size() && remove_flag_[i] != 0; }
+  /// How many particles are queued for creation at the next compact().
+  std::size_t queued_additions() const { return additions_.empty() ? 0 : additions_.front().size(); }
   /// Applies queued removals (index order) and additions (queue order). Returns true if the
   /// particle set changed (neighbour lists must then be rebuilt).
   bool compact();

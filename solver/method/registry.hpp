@@ -27,7 +27,7 @@ CaseSpec with_method(CaseSpec spec, const std::string& name);
 
 /// Throws InputError (the case file, the JSON path of the feature, the rule) when the case has
 /// something the domain decomposition over MPI ranks does not run yet: a method other than SPH,
-/// porous flow, or split and merge. Allocates nothing.
+/// wet sand (sand and porous flow together) or split and merge. Allocates nothing.
 void check_decomposable(const CaseSpec& spec);
 
 /// Whether method `name` writes checkpoints that resume bitwise (Method::writes_checkpoints).
@@ -35,7 +35,8 @@ bool method_writes_checkpoints(const std::string& name);
 
 /// The case's method at t = 0 at spacing dx (check_method first). `decompose`: the scene is
 /// decomposed over the MPI ranks of the run, every rank calling this with the same case (SPH of
-/// water, sand and walls only; InputError naming the feature otherwise, before anything is allocated).
+/// water, dry sand, walls and fixed porous beds only; InputError naming the feature otherwise,
+/// before anything is allocated).
 template <int D>
 std::unique_ptr<Method<D>> make_method(const CaseSpec& spec, double dx, bool decompose = false);
 

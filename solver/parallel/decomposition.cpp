@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 
 #include "neighbours/neighbour_grid.hpp"
 
@@ -62,7 +63,69 @@ std::vector<std::size_t> key_order(const std::vector<std::uint64_t>& key) {
 
 constexpr std::int64_t kNoBorder = std::numeric_limits<std::int64_t>::max();
 
+template <class T>
+void put(std::string& out, const T& v) { out.append(reinterpret_cast<const char*>(&v), sizeof v); }
+template <class T>
+T take(const std::string& in, std::size_t& at) {
+  T v;
+  std::memcpy(&v, in.data() + at, sizeof v);
+  at += sizeof v;
+  return v;
+}
+
+/// A CompactionNotice as bytes: the count, the removed keys, the additions' orders.
+std::string encode(const CompactionNotice& n) {
+  std::string out;
+  put(out, n.particles);
+  put(out, static_cast<std::uint64_t>(n.removed.size()));
+  for (const std::uint64_t k : n.removed) put(out, k);
+  put(out, static_cast<std::uint64_t>(n.added.size()));
+  for (const AdditionOrder& a : n.added) {
+    put(out, a.queuer);
+    put(out, a.place);
+  }
+  return out;
+}
+
+CompactionNotice decode(const std::string& in) {
+  CompactionNotice n;
+  std::size_t at = 0;
+  n.particles = take<std::uint64_t>(in, at);
+  n.removed.resize(take<std::uint64_t>(in, at));
+  for (std::uint64_t& k : n.removed) k = take<std::uint64_t>(in, at);
+  n.added.resize(take<std::uint64_t>(in, at));
+  for (AdditionOrder& a : n.added) {
+    a.queuer = take<std::uint64_t>(in, at);
+    a.place = take<std::uint64_t>(in, at);
+  }
+  return n;
+}
+
 }  // namespace
+
+CompactionKeys compaction_keys(const std::vector<std::uint64_t>& kept, const std::vector<AdditionOrder>& mine,
+                               const std::vector<CompactionNotice>& every_rank) {
+  std::uint64_t total = 0;
+  std::vector<std::uint64_t> removed;
+  std::vector<AdditionOrder> added;
+  for (const CompactionNotice& n : every_rank) {
+    total += n.particles;
+    removed.insert(removed.end(), n.removed.begin(), n.removed.end());
+    added.insert(added.end(), n.added.begin(), n.added.end());
+  }
+  std::sort(removed.begin(), removed.end());
+  std::sort(added.begin(), added.end());
+  CompactionKeys out;
+  out.survivors = total - removed.size();
+  out.additions = added.size();
+  out.kept.reserve(kept.size());
+  for (const std::uint64_t k : kept)
+    out.kept.push_back(k - static_cast<std::uint64_t>(std::lower_bound(removed.begin(), removed.end(), k) - removed.begin()));
+  out.added.reserve(mine.size());
+  for (const AdditionOrder& a : mine)
+    out.added.push_back(out.survivors + static_cast<std::uint64_t>(std::lower_bound(added.begin(), added.end(), a) - added.begin()));
+  return out;
+}
 
 template <int D>
 int Decomposition<D>::owner(std::int64_t c) const {
@@ -259,9 +322,56 @@ void Decomposition<D>::drop_halo(ParticleSet<D>& ps) {
 }
 
 template <int D>
+void Decomposition<D>::compact(ParticleSet<D>& ps, const std::vector<std::size_t>& queued_by) {
+  const std::size_t own = own_ == kNoHalo ? ps.size() : own_;
+  const std::size_t adds = ps.queued_additions();
+  if (queued_by.size() != adds) throw std::logic_error("Decomposition::compact: an addition without the particle that queued it");
+  std::vector<std::uint8_t> sent(own, 0);  // particles another rank holds a halo copy of
+  for (const auto& to : send_)
+    for (const std::uint32_t i : to) sent[i] = 1;
+  CompactionNotice notice;
+  notice.particles = own;
+  std::vector<std::size_t> removed;
+  std::vector<std::uint64_t> kept;
+  kept.reserve(own);
+  for (std::size_t i = 0; i < own; ++i)
+    if (ps.queued_for_removal(i)) {
+      removed.push_back(i);
+      notice.removed.push_back(key_[i]);
+      account_.at_border += sent[i];
+    } else {
+      kept.push_back(key_[i]);
+    }
+  for (std::size_t k = 0; k < adds; ++k) {
+    if (queued_by[k] >= own) throw std::logic_error("Decomposition::compact: an addition queued by a halo copy");
+    notice.added.push_back({key_[queued_by[k]], k});
+    account_.at_border += sent[queued_by[k]];
+  }
+  account_.removed += static_cast<long>(removed.size());
+  account_.added += static_cast<long>(adds);
+  std::vector<CompactionNotice> every_rank;
+  for (const std::string& bytes : comm_.all_gather(encode(notice))) every_rank.push_back(decode(bytes));
+  const CompactionKeys keys = compaction_keys(kept, notice.added, every_rank);
+  if (own_ != kNoHalo) drop_halo(ps);  // clears the queued removals: queued again below
+  for (const std::size_t i : removed) ps.queue_remove(i);
+  // The one process gives its k-th addition the id next_id + k; every rank holds that next_id.
+  const std::int64_t next_id = ps.next_id();
+  if (adds > 0) {
+    ParticleSet<D>& add = ps.additions();
+    for (std::size_t k = 0; k < adds; ++k) add.id[k] = next_id + static_cast<std::int64_t>(keys.added[k] - keys.survivors);
+  }
+  ps.compact();
+  ps.set_next_id(next_id + static_cast<std::int64_t>(keys.additions));
+  key_ = keys.kept;
+  key_.insert(key_.end(), keys.added.begin(), keys.added.end());
+  if (!std::is_sorted(key_.begin(), key_.end())) reorder(ps, key_order(key_));  // a queue not in its queuers' order
+}
+
+template <int D>
 ParticleSet<D> Decomposition<D>::gather(const ParticleSet<D>& owned) const {
   const std::vector<std::string> all = comm_.all_gather(pack(owned, all_indices(owned.size()), key_));
   ParticleSet<D> out;
+  if (owned.has_porous_fields()) out.add_porous_fields();  // the fields pack sent
   std::vector<std::uint64_t> keys;
   for (const std::string& bytes : all) unpack(bytes, out, keys);
   out.permute(key_order(keys));
@@ -271,12 +381,17 @@ ParticleSet<D> Decomposition<D>::gather(const ParticleSet<D>& owned) const {
 
 template <int D>
 DecompositionAccount Decomposition<D>::totals() const {
-  std::vector<std::uint64_t> sums = {static_cast<std::uint64_t>(account_.migrated), static_cast<std::uint64_t>(account_.halo_particles)};
+  std::vector<std::uint64_t> sums;
+  for (const long n : {account_.migrated, account_.halo_particles, account_.removed, account_.added, account_.at_border})
+    sums.push_back(static_cast<std::uint64_t>(n));
   comm_.sum(sums);
   DecompositionAccount a = account_;
   a.ranks = comm_.size();
   a.migrated = static_cast<long>(sums[0]);
   a.halo_particles = static_cast<long>(sums[1]);
+  a.removed = static_cast<long>(sums[2]);
+  a.added = static_cast<long>(sums[3]);
+  a.at_border = static_cast<long>(sums[4]);
   return a;
 }
 

@@ -32,8 +32,44 @@ struct DecompositionAccount {
   long migrated = 0;        ///< particles that moved to another rank's slab
   long halo_particles = 0;  ///< halo copies received, over all steps
   long clusters_across_ranks = 0;  ///< rigid sand clusters with members on several ranks, over all steps (sand/clusters_over_ranks.hpp)
+  long removed = 0, added = 0;  ///< particles removed and added at compactions (Decomposition::compact)
+  long at_border = 0;  ///< of those, removals and additions by a particle that another rank held a halo copy of
   long steps = 0;
 };
+
+/// Where a particle queued for creation stands in the one-process queue. The one process queues
+/// additions in the storage order of the particles that queue them (ParticleSet::compact appends
+/// them in queue order), so the order is the key of the particle that queued it, then its place in
+/// its rank's queue (one particle's additions are all queued on the rank that owns it).
+struct AdditionOrder {
+  std::uint64_t queuer = 0, place = 0;
+  auto operator<=>(const AdditionOrder&) const = default;
+};
+
+/// One rank's part of a compaction: how many particles it holds before it (no halo), the keys of
+/// those it removes, and the order of those it adds (in its queue's order).
+struct CompactionNotice {
+  std::uint64_t particles = 0;
+  std::vector<std::uint64_t> removed;
+  std::vector<AdditionOrder> added;
+};
+
+/// Keys after a compaction, on one rank: `kept` its surviving particles' new keys, `added` its
+/// additions' (in its queue's order); `survivors`, `additions`: the totals over the ranks.
+struct CompactionKeys {
+  std::vector<std::uint64_t> kept, added;
+  std::uint64_t survivors = 0, additions = 0;
+};
+
+/// The one-process indices after ParticleSet::compact (removals in index order, then additions in
+/// queue order) of one rank's particles, from every rank's notice (`every_rank`; the keys before
+/// it were the one-process indices 0..N−1). A survivor's new key is the number of survivors with
+/// a smaller key on any rank: its old key less the removed keys below it. An addition's is the
+/// number of survivors plus its place among every rank's additions sorted by AdditionOrder.
+/// `kept`: this rank's survivors' old keys; `mine`: its additions' orders. Exact integer
+/// arithmetic. Test: decomposition/compaction_keys_are_the_one_process_indices_after_compact.
+CompactionKeys compaction_keys(const std::vector<std::uint64_t>& kept, const std::vector<AdditionOrder>& mine,
+                               const std::vector<CompactionNotice>& every_rank);
 
 template <int D>
 class Decomposition {
@@ -57,6 +93,12 @@ class Decomposition {
   void add_halo(ParticleSet<D>& ps);
   /// Removes the halo from `ps` again.
   void drop_halo(ParticleSet<D>& ps);
+  /// End of a step that may remove or add particles: drops the halo, applies the removals and
+  /// additions queued in `ps` (its own particles' only) as ParticleSet::compact does, and gives
+  /// every particle its one-process index after the compaction as its key (compaction_keys) and
+  /// each addition the id the one process gives it. `queued_by[k]`: the index in `ps` of the
+  /// particle that queued addition k. Collective.
+  void compact(ParticleSet<D>& ps, const std::vector<std::size_t>& queued_by);
   /// Overwrites the halo's values of `field` (one entry per particle of `ps` with its halo) with
   /// their owners' values.
   template <class Field>
@@ -72,6 +114,10 @@ class Decomposition {
   ParticleSet<D> gather(const ParticleSet<D>& owned) const;
   /// The account summed over the ranks. Collective.
   DecompositionAccount totals() const;
+  /// Every rank's `mine` (structs of numbers and fixed-size vectors, copied as bytes), concatenated
+  /// in rank order, on every rank. Collective.
+  template <class T>
+  std::vector<T> all_gather_plain(const std::vector<T>& mine) const;
 
  private:
   /// The rank whose slab holds axis cell coordinate c.
@@ -104,15 +150,18 @@ class Decomposition {
 };
 
 /// The raw bytes of one particle field's value (a number, or a fixed-size Eigen vector or matrix).
+/// A struct of numbers and fixed-size vectors (no data(), no pointers) is its own bytes.
 template <class T>
 const void* field_bytes(const T& v) {
   if constexpr (std::is_arithmetic_v<T>) return &v;
-  else return v.data();
+  else if constexpr (requires { v.data(); }) return v.data();
+  else return &v;
 }
 template <class T>
 void* field_bytes(T& v) {
   if constexpr (std::is_arithmetic_v<T>) return &v;
-  else return v.data();
+  else if constexpr (requires { v.data(); }) return v.data();
+  else return &v;
 }
 
 template <int D>
@@ -127,6 +176,20 @@ void Decomposition<D>::refresh(Field& field) const {
   const std::vector<std::string> got = comm_.exchange(send);
   for (std::size_t r = 0; r < recv_.size(); ++r)
     for (std::size_t k = 0; k < recv_[r].size(); ++k) std::memcpy(field_bytes(field[recv_[r][k]]), got[r].data() + k * sizeof(T), sizeof(T));
+}
+
+template <int D>
+template <class T>
+std::vector<T> Decomposition<D>::all_gather_plain(const std::vector<T>& mine) const {
+  std::string bytes(mine.size() * sizeof(T), '\0');
+  if (!mine.empty()) std::memcpy(bytes.data(), mine.data(), bytes.size());
+  std::vector<T> all;
+  for (const std::string& got : comm_.all_gather(bytes)) {
+    const std::size_t old = all.size();
+    all.resize(old + got.size() / sizeof(T));
+    if (!got.empty()) std::memcpy(static_cast<void*>(all.data() + old), got.data(), got.size());
+  }
+  return all;
 }
 
 }  // namespace sc

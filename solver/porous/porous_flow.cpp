@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <numeric>
 
 #include "porous/capillary.hpp"
 #include "porous/darcy.hpp"
@@ -23,6 +25,25 @@ constexpr double kSaturated = 0.99;    // a fixed porous particle with S at leas
 
 template <int D>
 bool porous_at(const ParticleSet<D>& ps, std::size_t i) { return is_porous_phase(ps.phase_of(i), ps.porosity[i]); }
+
+/// Decomposed (`ranks`): overwrites the halo's entries of each of `fields` with their owners' values,
+/// before a pass that reads them from neighbours.
+template <int D, class... Fields>
+void refresh(const Decomposition<D>* ranks, Fields&... fields) {
+  if (ranks) (ranks->refresh(fields), ...);
+}
+
+/// The place of particle i in the one-process storage: its index, or its key when decomposed.
+template <int D>
+std::uint64_t place(const Decomposition<D>* ranks, std::size_t i) {
+  return ranks ? ranks->key(i) : static_cast<std::uint64_t>(i);
+}
+
+/// Whether particle i is one of this process's own (not a halo copy).
+template <int D>
+bool own(const Decomposition<D>* ranks, std::size_t i) {
+  return !ranks || !ranks->is_halo(i);
+}
 
 /// Which particles are porous (porous_at), from the porosity at the start of the step (fill_slot
 /// updates it for moving sand).
@@ -164,13 +185,14 @@ bool prepare_participants(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const 
 /// at the surface.
 template <int D>
 void set_contact_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
-                          const PorousWork<D>& w) {
+                          const PorousWork<D>& w, const Decomposition<D>* ranks) {
   const auto n = static_cast<std::int64_t>(ps.size());
-  const std::vector<double> column = water_column_pressure(ps, p.spacing, p.water_mass, p.fluid_density, g.norm());
+  const std::vector<double> column = water_column_pressure(ps, p.spacing, p.water_mass, p.fluid_density, g.norm(), ranks);
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i)
     if (w.contact[i] && ps.phase_of(i) == Phase::Boundary)
       ps.pore_pressure[i] = pond_pressure(ps, nb, column, i, p.fluid_density, g) + ps.capillary[i];
+  refresh(ranks, ps.pore_pressure);
 }
 
 /// Pore velocity (eq 27) of porous particles from the gradients (eq 22) of the capillary potential
@@ -269,9 +291,9 @@ bool exchanges(const PorousWork<D>& w, std::size_t i, std::size_t j) {
 /// becomes m_i v_i + dm u, its velocity the mass-weighted mean (absorption of a whole water
 /// particle, absorb_small).
 template <int D>
-void receive(ParticleSet<D>& ps, std::size_t i, double dm, const Vec<D>& u) {
-  ps.v[i] = (ps.m[i] * ps.v[i] + dm * u) / (ps.m[i] + dm);
-  ps.m[i] += dm;
+void receive(double& m, Vec<D>& v, double dm, const Vec<D>& u) {
+  v = (m * v + dm * u) / (m + dm);
+  m += dm;
 }
 
 /// Momentum of the water exchanged in a step of diffusion (thesis §3.4: the absorbed water counts
@@ -300,7 +322,8 @@ void take_momentum(ParticleSet<D>& ps, const PorousWork<D>& w) {
 /// with dry neighbours, most of a scene) skips its neighbours in the limiter passes: they would
 /// only add +0 to its sums (sums that start at +0 or above), so the bits are the same.
 template <int D>
-void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, double dt, PorousWork<D>& w) {
+void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, double dt, PorousWork<D>& w,
+                        const Decomposition<D>* ranks) {
   const auto n = static_cast<std::int64_t>(ps.size());
   w.to.resize(nb.total_pairs());
   w.from.resize(nb.total_pairs());
@@ -329,6 +352,7 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
     w.b[i] = inflow_scale(w.slot[i].mass, w.slot[i].capacity, in, dt);
     w.in[i] = in;
   }
+  refresh(ranks, w.a, w.b);  // the limits of the neighbours
   // Second inflow limit: the room also counts what the particle surely sends out in the step, its
   // outflow under the first limits (outflows only grow when the limits are relaxed, so the bound
   // m_p <= capacity still holds); without it a saturated particle in a steady flow stays short of
@@ -344,6 +368,7 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
     w.relaxed[i] = inflow_scale(w.slot[i].mass - dt * out, w.slot[i].capacity, w.in[i], dt);
   }
   w.b.swap(w.relaxed);
+  refresh(ranks, w.b);
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t i = 0; i < n; ++i) {
     if (!w.part[i]) continue;
@@ -372,6 +397,7 @@ void diffuse_conserving(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Po
     }
   }
   take_momentum(ps, w);
+  refresh(ranks, ps.absorbed, ps.emit_store, ps.m, ps.v);  // absorb_small's receivers
 }
 
 /// Capillary potential P^c [thesis eq. 23] that the next step's pore velocity will see at i: that of
@@ -390,7 +416,7 @@ double suction_after_step(const ParticleSet<D>& ps, const PorousParams& p, const
 /// values, then the saturated rigid zone solved for its pore-water pressure P^p − P^c.
 template <int D>
 void update_rigid_pore_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
-                                PorousWork<D>& w) {
+                                PorousWork<D>& w, const Decomposition<D>* ranks) {
   const auto n = static_cast<std::int64_t>(ps.size());
   w.role.resize(ps.size());
   bool unknowns = false;
@@ -401,10 +427,11 @@ void update_rigid_pore_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, 
     if (w.role[i] == PressureRole::Prescribed && ps.phase_of(i) == Phase::Boundary && !w.contact[i])
       ps.pore_pressure[i] = 0.0;
   }
-  if (!unknowns) return;
+  if (!unknowns && !ranks) return;  // decomposed, every rank takes part in the solve (it may have none)
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) w.suction[i] = suction_after_step(ps, p, w, i);
-  solve_harmonic_pressure(ps, nb, w.role, w.suction, p.fluid_density, g, ps.pore_pressure);
+  refresh(ranks, w.role, w.suction, ps.pore_pressure);
+  solve_harmonic_pressure(ps, nb, w.role, w.suction, p.fluid_density, g, ps.pore_pressure, ranks);
 }
 
 /// The literal eq 28 (switch "lenaerts_literal"): each particle integrates its own rate and is
@@ -445,23 +472,103 @@ void update_rest_densities(ParticleSet<D>& ps, const PorousParams& p, const Poro
   }
 }
 
-/// Deletes water particles that are (nearly) empty, giving their rest, with its momentum, to the
-/// porous neighbour with the most room (kept if none has room). Serial, index order.
+/// A porous neighbour a nearly empty water particle may give its rest to (absorb_small), as it is
+/// before the absorptions of the step: its place in the one-process storage, capacity, content,
+/// mass and velocity, and whether its mass holds its water (moving sand).
 template <int D>
-std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const PorousWork<D>& w) {
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (!w.part[i] || w.porous[i] || ps.m[i] >= p.min_water_fraction * full_mass_at_level(ps, i, p.water_mass)) continue;
-    std::size_t best = i;
+struct Receiver {
+  std::uint64_t at;
+  double capacity, absorbed, m;
+  Vec<D> v;
+  bool held;
+};
+
+/// A nearly empty water particle (absorb_small): its place, mass, velocity, and its receivers
+/// [first, first + count) in neighbour-list order.
+template <int D>
+struct SmallWater {
+  std::uint64_t at;
+  double m;
+  Vec<D> v;
+  std::uint64_t first, count;
+};
+
+/// Decides absorb_small in the one-process order (by place): each small water particle gives its
+/// rest to the receiver with the most room as the earlier absorptions left it (the first in list
+/// order among equals), if that has room for it. Returns the receivers' states after it, by
+/// place, and marks the absorbed particles (`absorbed`, by candidate).
+template <int D>
+std::map<std::uint64_t, Receiver<D>> replay_absorption(const std::vector<SmallWater<D>>& small, const std::vector<Receiver<D>>& receivers,
+                                                       std::vector<std::uint8_t>& absorbed) {
+  std::map<std::uint64_t, Receiver<D>> state;
+  for (const Receiver<D>& r : receivers) state.emplace(r.at, r);
+  std::vector<std::size_t> order(small.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return small[a].at < small[b].at; });
+  absorbed.assign(small.size(), 0);
+  for (const std::size_t c : order) {
+    const SmallWater<D>& i = small[c];
+    Receiver<D>* best = nullptr;
     double best_room = -1.0;
-    for (const auto j : nb.of(i)) {
-      if (!w.porous[j]) continue;
-      const double room = w.slot[j].capacity - ps.absorbed[j];
-      if (room > best_room) { best = j; best_room = room; }
+    for (std::uint64_t k = i.first; k < i.first + i.count; ++k) {
+      Receiver<D>& r = state.at(receivers[k].at);
+      const double room = r.capacity - r.absorbed;
+      if (room > best_room) { best = &r; best_room = room; }
     }
-    if (best == i || best_room < ps.m[i]) continue;
-    if (carries_held_water(ps, best)) receive(ps, best, ps.m[i], ps.v[i]);
-    ps.absorbed[best] += ps.m[i];
+    if (!best || best_room < i.m) continue;
+    if (best->held) receive(best->m, best->v, i.m, i.v);
+    best->absorbed += i.m;
+    absorbed[c] = 1;
+  }
+  return state;
+}
+
+/// Deletes water particles that are (nearly) empty, giving their rest, with its momentum, to the
+/// porous neighbour with the most room (kept if none has room), one after the other in storage
+/// order (replay_absorption). Decomposed, every rank's small particles and their receivers (with
+/// the values refreshed in the halo) are gathered and every rank replays them all in key order;
+/// each rank then writes the receivers it holds, own or halo, and removes its own absorbed ones.
+template <int D>
+std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const PorousWork<D>& w,
+                         const Decomposition<D>* ranks) {
+  std::vector<SmallWater<D>> small;
+  std::vector<Receiver<D>> receivers;
+  std::vector<std::size_t> mine;  // index of each of small (this rank's)
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (!own(ranks, i) || !w.part[i] || w.porous[i] || ps.m[i] >= p.min_water_fraction * full_mass_at_level(ps, i, p.water_mass))
+      continue;
+    SmallWater<D> c{place(ranks, i), ps.m[i], ps.v[i], receivers.size(), 0};
+    for (const auto j : nb.of(i))
+      if (w.porous[j]) receivers.push_back({place(ranks, j), w.slot[j].capacity, ps.absorbed[j], ps.m[j], ps.v[j], carries_held_water(ps, j)});
+    c.count = receivers.size() - c.first;
+    small.push_back(c);
+    mine.push_back(i);
+  }
+  const std::size_t local = small.size();
+  if (ranks) {
+    // Each rank's candidates point into its own receivers: renumbered in the gathered order.
+    small = ranks->all_gather_plain(small);
+    receivers = ranks->all_gather_plain(receivers);
+    std::uint64_t first = 0;
+    for (SmallWater<D>& c : small) {
+      c.first = first;
+      first += c.count;
+    }
+  }
+  std::vector<std::uint8_t> absorbed;
+  const std::map<std::uint64_t, Receiver<D>> state = replay_absorption(small, receivers, absorbed);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const auto it = state.find(place(ranks, i));
+    if (it == state.end()) continue;
+    ps.absorbed[i] = it->second.absorbed;
+    ps.m[i] = it->second.m;
+    ps.v[i] = it->second.v;
+  }
+  std::size_t count = 0;
+  for (std::size_t k = 0; k < local; ++k) {
+    const std::size_t i = mine[k];
+    const auto c = std::find_if(small.begin(), small.end(), [&](const SmallWater<D>& s) { return s.at == place(ranks, i); });
+    if (!absorbed[static_cast<std::size_t>(c - small.begin())]) continue;
     ps.m[i] = 0.0;
     ps.queue_remove(i);
     ++count;
@@ -469,28 +576,62 @@ std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const P
   return count;
 }
 
+/// A full emission store whose target is free of the particles of its neighbourhood (emit_new):
+/// its place in the one-process storage, its target and the spacing of its particle.
+template <int D>
+struct EmissionCandidate {
+  std::uint64_t at;
+  Vec<D> target;
+  double spacing;
+};
+
+/// Which `candidates` create a particle: one after the other in the one-process order (by place),
+/// each whose target lies at least kPlacementGap spacings from the targets placed before it.
+/// Decomposed, every rank's candidates are gathered and every rank places them all.
+template <int D>
+std::vector<std::uint64_t> place_emissions(std::vector<EmissionCandidate<D>> candidates, const Decomposition<D>* ranks) {
+  if (ranks) candidates = ranks->all_gather_plain(candidates);
+  std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) { return a.at < b.at; });
+  std::vector<std::uint64_t> granted;
+  typename ParticleSet<D>::VecArray placed;
+  for (const EmissionCandidate<D>& c : candidates) {
+    bool free = true;
+    for (const Vec<D>& x : placed) free = free && (x - c.target).norm() >= kPlacementGap * c.spacing;
+    if (!free) continue;
+    placed.push_back(c.target);
+    granted.push_back(c.at);
+  }
+  return granted;
+}
+
 /// Creates water particles from full emission stores at targets free of any particle (a store
 /// whose target still holds departing water waits); returns stores of particles that are no
 /// longer exposed to m_p (as far as they have room). A new particle takes at most one full water
 /// particle's mass; the rest of the store waits for the next free target, so a store that waited
 /// long does not leave as one heavy particle that sinks through the water (test
-/// porous/a_large_emission_store_leaves_in_particles_of_at_most_a_full_mass). Serial, index order.
+/// porous/a_large_emission_store_leaves_in_particles_of_at_most_a_full_mass). Targets are placed
+/// in storage order (place_emissions); the creations are queued in it, each particle's in
+/// w.emitters.
 template <int D>
-std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const PorousWork<D>& w) {
-  std::size_t count = 0;
-  typename ParticleSet<D>::VecArray placed;
+std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, PorousWork<D>& w, const Decomposition<D>* ranks) {
+  std::vector<EmissionCandidate<D>> candidates;
+  std::vector<std::size_t> mine;
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (!w.porous[i] || ps.emit_store[i] <= 0.0) continue;
-    const double s = w.spacing[i];
+    if (!own(ranks, i) || !w.porous[i] || ps.emit_store[i] <= 0.0) continue;
     if (!w.exposed[i]) {
       const double back = std::min(ps.emit_store[i], std::max(0.0, w.slot[i].capacity - ps.absorbed[i]));
       ps.absorbed[i] += back;
       ps.emit_store[i] -= back;
       continue;
     }
-    bool free = w.placeable[i];
-    for (const Vec<D>& x : placed) free = free && (x - w.target[i]).norm() >= kPlacementGap * s;
-    if (!free || ps.emit_store[i] < p.create_fraction * p.water_mass) continue;
+    if (!w.placeable[i] || ps.emit_store[i] < p.create_fraction * p.water_mass) continue;
+    candidates.push_back({place(ranks, i), w.target[i], w.spacing[i]});
+    mine.push_back(i);
+  }
+  const std::vector<std::uint64_t> granted = place_emissions(candidates, ranks);
+  std::size_t count = 0;
+  for (const std::size_t i : mine) {
+    if (!std::binary_search(granted.begin(), granted.end(), place(ranks, i))) continue;
     ParticleSet<D>& add = ps.additions();
     const std::size_t k = add.append();
     add.x[k] = w.target[i];
@@ -502,7 +643,7 @@ std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const PorousWork
     add.rho[k] = add.rho0[k];
     ps.emit_store[i] -= add.m[k];
     if (carries_held_water(ps, i)) ps.m[i] -= add.m[k];  // the new particle takes its share of i's momentum
-    placed.push_back(w.target[i]);
+    w.emitters.push_back(i);
     ++count;
   }
   return count;
@@ -512,7 +653,7 @@ std::size_t emit_new(ParticleSet<D>& ps, const PorousParams& p, const PorousWork
 
 template <int D>
 PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& params,
-                             const Vec<D>& gravity, double dt, PorousWork<D>& w) {
+                             const Vec<D>& gravity, double dt, PorousWork<D>& w, const Decomposition<D>* ranks) {
   const std::size_t n = ps.size();
   w.slot.resize(n);
   for (auto* v : {&w.part, &w.porous, &w.exposed, &w.placeable, &w.seepage, &w.contact, &w.flowing}) v->resize(n);
@@ -521,18 +662,24 @@ PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
     v->resize(n);
   w.brought.resize(n);
   w.target.resize(n);
-  if (prepare_participants(ps, nb, params, gravity, dt, w)) set_contact_pressure(ps, nb, params, gravity, w);
+  w.emitters.clear();
+  const bool fixed_contact = prepare_participants(ps, nb, params, gravity, dt, w);
+  refresh(ranks, w.part, w.contact, w.slot, w.pc, w.pp);
+  // Decomposed, every rank takes part in the scene-wide water columns (it may have no contact).
+  if (fixed_contact || ranks) set_contact_pressure(ps, nb, params, gravity, w, ranks);
   pore_velocities(ps, nb, params, gravity, w);
+  refresh(ranks, ps.pore_velocity, w.slot);
   PorousStepCounts counts;
   if (params.diffusion == PorousDiffusion::LenaertsLiteral) {
     diffuse_literal(ps, nb, dt, w);
+    refresh(ranks, ps.absorbed, ps.m);
   } else {
     exposure(ps, nb, params, gravity, w);
-    diffuse_conserving(ps, nb, params, dt, w);
-    update_rigid_pore_pressure(ps, nb, params, gravity, w);
-    counts.created = emit_new(ps, params, w);
+    diffuse_conserving(ps, nb, params, dt, w, ranks);
+    update_rigid_pore_pressure(ps, nb, params, gravity, w, ranks);
+    counts.created = emit_new(ps, params, w, ranks);
   }
-  counts.absorbed = absorb_small(ps, nb, params, w);
+  counts.absorbed = absorb_small(ps, nb, params, w, ranks);
   update_rest_densities(ps, params, w);
   return counts;
 }
@@ -549,9 +696,9 @@ double total_water(const ParticleSet<D>& ps) {
 }
 
 template PorousStepCounts porous_step<2>(ParticleSet<2>&, const NeighbourGrid<2>&, const PorousParams&, const Vec<2>&, double,
-                                         PorousWork<2>&);
+                                         PorousWork<2>&, const Decomposition<2>*);
 template PorousStepCounts porous_step<3>(ParticleSet<3>&, const NeighbourGrid<3>&, const PorousParams&, const Vec<3>&, double,
-                                         PorousWork<3>&);
+                                         PorousWork<3>&, const Decomposition<3>*);
 template double total_water<2>(const ParticleSet<2>&);
 template double total_water<3>(const ParticleSet<3>&);
 

@@ -39,6 +39,7 @@
 #pragma once
 #include "core/particle_set.hpp"
 #include "neighbours/neighbour_grid.hpp"
+#include "parallel/decomposition.hpp"
 #include "porous/diffusion.hpp"
 #include "porous/porous_params.hpp"
 #include "porous/rigid_pore_pressure.hpp"
@@ -67,14 +68,21 @@ struct PorousWork {
   std::vector<PressureRole> role;
   typename ParticleSet<D>::VecArray target;
   typename ParticleSet<D>::VecArray brought;  // Σ_j Δm_j v_j of the water it took [kg m/s]
+  std::vector<std::size_t> emitters;  // the particle that queued each addition of the step, in queue order
 };
 
 /// Advances the absorbed water by dt. Deletions and creations are queued in `ps` (applied by
 /// compact()). Fixed porous particles (boundary phase) keep φ = φ0; their P^p is the pore-water
 /// pressure of a rigid skeleton (pond pressure in contact, storage relaxation when saturated).
+/// `ranks`: the scene is decomposed (ps holds this rank's particles, then the halo with the
+/// positions and velocities of this step): every value a pass reads from neighbours is refreshed
+/// in the halo before it, the scene-wide parts (water columns, the pore-pressure solve, the
+/// placement of new particles, the absorption of small ones) are gathered and done in the
+/// one-process order, and only this rank's own particles queue removals and additions
+/// (docs/scaling.md, "Porous flow").
 template <int D>
 PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& params,
-                             const Vec<D>& gravity, double dt, PorousWork<D>& work);
+                             const Vec<D>& gravity, double dt, PorousWork<D>& work, const Decomposition<D>* ranks = nullptr);
 
 /// Water in the scene [kg]: water particle mass plus absorbed water (m_p and emission stores).
 template <int D>

@@ -5,6 +5,7 @@
 
 #include "core/particle_set.hpp"
 #include "neighbours/neighbour_grid.hpp"
+#include "parallel/decomposition.hpp"
 
 namespace sc {
 
@@ -41,9 +42,11 @@ enum class PressureRole : std::uint8_t {
 /// body: the pore water is incompressible and feels the pond's weight, not the acoustic noise of
 /// the Tait pressure (a few hundred Pa at c = 15 m/s, as much as the head of a shallow pond).
 /// Zero for particles that are not water.
+/// `ranks`: the scene is decomposed; every rank's water particles make the columns (gathered, each
+/// column in the one-process order), and ps's own particles and halo get their values.
 template <int D>
 std::vector<double> water_column_pressure(const ParticleSet<D>& ps, double spacing, double full_mass,
-                                          double fluid_density, double gravity);
+                                          double fluid_density, double gravity, const Decomposition<D>* ranks = nullptr);
 
 /// Pressure of the pond at a porous particle i in contact with water: the column pressures of its
 /// water neighbours carried to x_i hydrostatically, Σ_j W_ij (P_j + ρ^f g·(x_i − x_j)) / Σ_j W_ij
@@ -52,9 +55,13 @@ template <int D>
 double pond_pressure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const std::vector<double>& column,
                      std::size_t i, double fluid_density, const Vec<D>& gravity);
 
+/// `ranks`: the scene is decomposed (role, suction, P and the positions current in the halo);
+/// every rank's rows of the system are gathered and every rank solves the one-process system,
+/// rows in the order of the keys, and sets P at its own particles and halo.
 template <int D>
 void solve_harmonic_pressure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
                              const std::vector<PressureRole>& role, const std::vector<double>& suction,
-                             double fluid_density, const Vec<D>& gravity, std::vector<double>& P);
+                             double fluid_density, const Vec<D>& gravity, std::vector<double>& P,
+                             const Decomposition<D>* ranks = nullptr);
 
 }  // namespace sc

@@ -70,8 +70,8 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params, std::
   last_dt_ = params_.dt_max;
   check_state();
   if (!ranks || ranks->size() == 1) return;
-  if (params_.porous || params_.adaptive)
-    throw std::logic_error("the domain decomposition runs water, sand and fixed walls only");
+  if ((has_sand_ && params_.porous) || params_.adaptive)
+    throw std::logic_error("the domain decomposition runs water, dry sand, fixed walls and fixed porous beds only");
   dd_.emplace(*ranks);
   dd_->scatter(ps_);
 }
@@ -137,6 +137,8 @@ void Simulator<D>::compute_forces() {
     for (std::int64_t i = 0; i < n; ++i)
       if (ps_.moves(i)) ps_.p[i] = params_.eos.pressure(ps_.rho[i], ps_.rho0[i]);
     if (partial_water_mass() > 0.0) {
+      refresh_halo(ps_.rho);  // the parcels' pressure reads the full neighbours' pressure and volume
+      refresh_halo(ps_.p);
       set_partial_water_pressure(ps_, nb_, partial_water_mass());
       set_partial_water_density(ps_, partial_water_mass(), params_.porous->fluid_density);
     }
@@ -261,14 +263,17 @@ double Simulator<D>::step() {
   integrate(dt);
   last_dt_ = dt;
   if (params_.porous) {  // thesis Fig. 3.6 line 7: absorption and emission (solver/porous/)
+    refresh_halo(ps_.x);  // the halo moved with forces from its partial neighbour lists
+    refresh_halo(ps_.v);
     auto tp = timers_.time(Stage::Porous);
-    porous_step(ps_, nb_, *params_.porous, g_, dt, porous_work_);
+    porous_step(ps_, nb_, *params_.porous, g_, dt, porous_work_, dd_ ? &*dd_ : nullptr);
   }
   if (dd_) {
     auto th = timers_.time(Stage::Halo);
-    dd_->drop_halo(ps_);
+    dd_->compact(ps_, porous_work_.emitters);  // the additions' one-process order, from their emitters
+  } else {
+    ps_.compact();
   }
-  ps_.compact();
   try {
     if (dd_) check_state_over_ranks();
     else check_state();
