@@ -351,7 +351,7 @@ void NeighbourGrid<D>::find_pairs(const ParticleSet<D>& ps) {
     std::size_t used = 0;
     const std::size_t end = std::min(n, (c + 1) * kChunk);
     for (std::size_t i = c * kChunk; i < end; ++i) {
-      if (!inert_[i] || near_moving_[slot_of_[i] / 2])  // else no non-inert particle within reach: an empty list
+      if (i < listed_ && (!inert_[i] || near_moving_[slot_of_[i] / 2]))  // else no non-inert particle within reach: an empty list
         used = append_neighbours(ps, i, chunk_lists_[c], used);
       offset_[i + 1] = used;
     }

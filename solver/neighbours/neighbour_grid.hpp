@@ -41,6 +41,12 @@ class NeighbourGrid {
   void bin_moving(const ParticleSet<D>& particles);
   /// Builds the lists from the cells of the last bin() of the same particles.
   void find_pairs(const ParticleSet<D>& particles);
+  /// From now on find_pairs lists the neighbours of the first `n` particles only and gives the
+  /// others an empty list; they are still found as neighbours. A decomposed run's halo follows its
+  /// own particles, and every value a halo particle sums is overwritten by its owner's before any
+  /// other particle reads it (parallel/decomposition.hpp), so its lists would be work thrown away.
+  /// SIZE_MAX (the default): every particle.
+  void list_only_first(std::size_t n) { listed_ = n; }
   /// Bins on the grid of `bounds` from now on instead of the particles' own bounds (the bounds of
   /// the whole scene when the particles are one rank's part of it, parallel/decomposition.hpp), so
   /// that every rank's cells are the cells of the one-process grid; nullopt: the particles' own.
@@ -106,6 +112,7 @@ class NeighbourGrid {
   std::vector<std::uint32_t> block_count_;  // per block of particles and slot: counts, then fill positions (bin)
   GridGeometry<D> g_;
   std::optional<Bounds> imposed_;
+  std::size_t listed_ = SIZE_MAX;  // particles from this index on get an empty list (list_only_first)
   std::vector<std::size_t> storage_order_;
 };
 

@@ -106,6 +106,8 @@ class Decomposition {
 
   /// Whether particle i of `ps` is a halo copy (the halo follows this rank's own particles).
   bool is_halo(std::size_t i) const { return i >= own_; }
+  /// The number of this rank's own particles, which come first in `ps` during a step (SIZE_MAX outside one).
+  std::size_t own() const { return own_; }
   /// Bounds of the whole scene at the start of the step (all ranks' particles).
   const GridBounds<D>& bounds() const { return bounds_; }
   /// The key (place in the one-process storage order) of particle i of `ps`.

@@ -189,6 +189,7 @@ void Simulator<D>::sort_and_find_neighbours() {
     ps_.permute(nb_.storage_order());
     nb_.bin(ps_);
   }
+  nb_.list_only_first(dd_ ? dd_->own() : SIZE_MAX);  // the halo's own sums would be overwritten
   nb_.find_pairs(ps_);
 }
 
