@@ -6,7 +6,9 @@
 // cannot write ends every rank with the error, and a case with a feature that is not decomposed
 // stops with exit code 2 before it starts. Porous flow through fixed beds (absorption at the pond,
 // emission at the seepage face, both next to a slab's border) gives the one-process state too, and
-// the keys after a compaction are the one-process indices.
+// the keys after a compaction are the one-process indices. Adaptive sampling (splits and merges next
+// to a slab's border, passes on the gathered scene) gives the one-process state and checkpoint, and
+// wet sand with adaptivity stays refused.
 #include <boost/test/unit_test.hpp>
 #include <filesystem>
 #include <fstream>
@@ -404,6 +406,59 @@ BOOST_AUTO_TEST_CASE(sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrup
   BOOST_TEST(printed(resumed).checksum == printed(straight).checksum);
   fs::remove_all(root);
   fs::remove_all(fs::path(file).parent_path());
+}
+
+// Adaptive sampling (solver/adaptive/), shortened: the dam break whose deep water merges while its
+// front runs over the floor, and the forced cycles of split_merge (everything merged, then split
+// back). Every pass runs on the gathered scene on every rank; over 2 and 3 ranks the runs end
+// bitwise in the one-process state, with particles split or merged next to a slab's border.
+BOOST_AUTO_TEST_CASE(adaptive_runs_over_2_and_3_ranks_are_the_one_process_run) {
+  if (!have_mpi()) return;
+  // Without the uniform twins (one-process runs of their own) and the metrics comparing with them.
+  const json no_twin = {{"validation", {{"uniform_twin", nullptr},
+                                        {"metrics", {{"front_vs_uniform_rms", nullptr}, {"pressure_l2_vs_uniform_ratio", nullptr}}}}}};
+  for (const auto& [name, end] : std::vector<std::pair<std::string, double>>{{"dam_break_adaptive", 0.1}, {"split_merge", 0.25}}) {
+    BOOST_TEST_CONTEXT(name) {
+      const std::string file = shortened_case(name, end, no_twin);
+      const std::vector<Printed> p = runs_agree(file);
+      for (const int ranks : {2, 3}) {
+        BOOST_TEST(p[ranks - 1].removed > 0);
+        BOOST_TEST(p[ranks - 1].added > 0);
+        BOOST_TEST(p[ranks - 1].at_border > 0);
+      }
+      fs::remove_all(fs::path(file).parent_path());
+    }
+  }
+}
+
+// An adaptive run's checkpoint written by 3 ranks between passes resumes on 2 with the
+// uninterrupted checksum while the passes go on.
+BOOST_AUTO_TEST_CASE(adaptive_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum) {
+  if (!have_mpi()) return;
+  const json no_twin = {{"validation", {{"uniform_twin", nullptr}, {"metrics", {{"front_vs_uniform_rms", nullptr}}}}}};
+  const std::string file = shortened_case("dam_break_adaptive", 0.1, no_twin);
+  const std::string root = test::fresh_path("decomposed_adaptive_restart");
+  const test::ProcessResult straight = sandcastle(1, {"run", file, "--out", root + "/straight"});
+  const test::ProcessResult three = sandcastle(3, {"run", file, "--out", root + "/three", "--checkpoint-every", "50"});
+  BOOST_TEST(printed(three).checksum == printed(straight).checksum);
+  const std::string ckpt = root + "/three/checkpoint_00000050.ckpt";
+  BOOST_TEST_REQUIRE(fs::exists(ckpt));
+  const test::ProcessResult resumed = sandcastle(2, {"run", file, "--out", root + "/resumed", "--resume", ckpt});
+  BOOST_TEST_INFO("resumed: " << resumed.out);
+  BOOST_TEST(printed(resumed).checksum == printed(straight).checksum);
+  BOOST_TEST(printed(resumed).removed > 0);
+  fs::remove_all(root);
+  fs::remove_all(fs::path(file).parent_path());
+}
+
+// Wet sand with adaptive sampling is refused by the wet sand rule.
+BOOST_AUTO_TEST_CASE(adaptive_wet_sand_over_2_ranks_stops_with_exit_code_2) {
+  if (!have_mpi()) return;
+  const std::string out = test::fresh_path("decomposed_adaptive_wet");
+  const test::ProcessResult r = sandcastle(2, {"run", cases + "/sand_water_adaptive_3d/case.json", "--out", out});
+  BOOST_TEST(r.exit_code == 2);
+  BOOST_TEST(r.err.find("sand with porous flow") != std::string::npos);
+  BOOST_TEST(!fs::exists(out));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

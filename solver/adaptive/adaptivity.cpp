@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "porous/porous_flow.hpp"
 
@@ -186,25 +187,30 @@ std::vector<double> particle_elfs(const ParticleSet<D>& ps, const AdaptivitySpec
 }
 
 template <int D>
-void adapt_particles(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const AdaptivitySpec& spec, double t,
-                     AdaptAccount& account) {
+AdaptChanges adapt_particles(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const AdaptivitySpec& spec, double t,
+                             AdaptAccount& account) {
   const Totals before = totals(ps);
   const std::vector<double> elfs = decision_elfs<D>(ps, spec, t);
-  const AdaptStats stats = adapt_pass<D>(ps, elfs, spec.params, [&](std::size_t i) { return nb.of(i); });
+  AdaptStats stats = adapt_pass<D>(ps, elfs, spec.params, [&](std::size_t i) { return nb.of(i); });
+  AdaptChanges changes;
+  changes.queued_by = std::move(stats.queued_by);
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.queued_for_removal(i)) changes.removed.push_back(i);
   ps.compact();
   ++account.passes;
   account.splits += stats.splits;
   account.merges += stats.merges;
   account.energy_removed += stats.energy_removed;
   record(before, totals(ps), account);
+  return changes;
 }
 
 #define SC_ADAPTIVITY_INSTANTIATE(D)                                                                     \
   template double decision_band<D>(const AdaptiveParams&, double, double);                               \
   template void derive_adaptivity<D>(AdaptivitySpec&, double, double);                                 \
   template std::vector<double> particle_elfs<D>(const ParticleSet<D>&, const AdaptivitySpec&);           \
-  template void adapt_particles<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const AdaptivitySpec&, double, \
-                                   AdaptAccount&);
+  template AdaptChanges adapt_particles<D>(ParticleSet<D>&, const NeighbourGrid<D>&, const AdaptivitySpec&, \
+                                           double, AdaptAccount&);
 SC_ADAPTIVITY_INSTANTIATE(2)
 SC_ADAPTIVITY_INSTANTIATE(3)
 #undef SC_ADAPTIVITY_INSTANTIATE

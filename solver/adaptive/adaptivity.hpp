@@ -76,11 +76,18 @@ struct AdaptAccount {
 template <int D>
 std::vector<double> particle_elfs(const ParticleSet<D>& ps, const AdaptivitySpec& spec);
 
+/// What one pass changed, as indices of the particles before its compaction: the particles it
+/// removed (ascending) and, for each particle it added (in the order ParticleSet::compact appends
+/// them), the particle that queued it.
+struct AdaptChanges {
+  std::vector<std::size_t> removed, queued_by;
+};
+
 /// One adaptivity pass at time t: decides (elfs or the forced cycle), queues splits and merges,
 /// applies them (ps.compact()), and adds counts and conservation errors to `account`.
 /// `nb` must hold the lists of the current particle set (same size).
 template <int D>
-void adapt_particles(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const AdaptivitySpec& spec, double t,
+AdaptChanges adapt_particles(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const AdaptivitySpec& spec, double t,
                      AdaptAccount& account);
 
 }  // namespace sc

@@ -94,6 +94,9 @@ struct AdaptStats {
   std::size_t splits = 0;
   std::size_t merges = 0;
   double energy_removed = 0.0;  ///< sum of mu_r |dv|^2 / 2 over the merges [J]
+  /// For each particle queued in ps.additions(), in queue order, the particle that queued it: the
+  /// parent of a split child, the first of a merged pair (the compaction's account over MPI ranks).
+  std::vector<std::size_t> queued_by;
 };
 
 /// One adaptivity pass over the moving particles, in index order: decides with elfs[i], queues
@@ -165,10 +168,12 @@ AdaptStats adapt_pass(ParticleSet<D>& ps, const std::vector<double>& elfs,
     if (d == Decision::Merge) merge_candidates.push_back(i);
     if (d != Decision::Split) continue;
     detail::queue_split<D>(ps, i, params, neighbours);
+    stats.queued_by.insert(stats.queued_by.end(), 2, i);
     ++stats.splits;
   }
   for (auto [i, j] : pair_merge_candidates<D>(ps, merge_candidates, params, neighbours)) {
     stats.energy_removed += merge_pair<D>(ps, i, j, ps.additions());
+    stats.queued_by.push_back(i);
     ps.queue_remove(i);
     ps.queue_remove(j);
     ++stats.merges;

@@ -93,7 +93,6 @@ void check_decomposable(const CaseSpec& spec) {
       if (spec.meshes[m].phase == Phase::Sand)
         throw InputError(spec.file, "/meshes/" + std::to_string(m), "sand with porous flow (wet sand)" + rule);
   }
-  if (spec.adaptive) throw InputError(spec.file, "/adaptive", "adaptive sampling (split and merge)" + rule);
 }
 
 std::vector<std::string> method_names() {

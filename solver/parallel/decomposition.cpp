@@ -326,9 +326,7 @@ void Decomposition<D>::compact(ParticleSet<D>& ps, const std::vector<std::size_t
   const std::size_t own = own_ == kNoHalo ? ps.size() : own_;
   const std::size_t adds = ps.queued_additions();
   if (queued_by.size() != adds) throw std::logic_error("Decomposition::compact: an addition without the particle that queued it");
-  std::vector<std::uint8_t> sent(own, 0);  // particles another rank holds a halo copy of
-  for (const auto& to : send_)
-    for (const std::uint32_t i : to) sent[i] = 1;
+  const std::vector<std::uint8_t> sent = sent_flags(own);
   CompactionNotice notice;
   notice.particles = own;
   std::vector<std::size_t> removed;
@@ -368,8 +366,45 @@ void Decomposition<D>::compact(ParticleSet<D>& ps, const std::vector<std::size_t
 }
 
 template <int D>
+std::vector<std::uint8_t> Decomposition<D>::sent_flags(std::size_t own) const {
+  std::vector<std::uint8_t> sent(own, 0);
+  for (const auto& to : send_)
+    for (const std::uint32_t i : to) sent[i] = 1;
+  return sent;
+}
+
+template <int D>
+void Decomposition<D>::adopt(ParticleSet<D>& ps, ParticleSet<D> whole, const std::vector<std::size_t>& removed,
+                             const std::vector<std::size_t>& queued_by) {
+  const std::size_t own = own_ == kNoHalo ? ps.size() : own_;
+  const std::vector<std::uint8_t> sent = sent_flags(own);
+  // The keys before the compaction, 0..N-1, to this rank's index (none: another rank's particle).
+  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> mine(whole.size() + removed.size() - queued_by.size(), none);
+  for (std::size_t i = 0; i < own; ++i) mine[key_[i]] = i;
+  const auto count = [&](const std::vector<std::size_t>& keys, long& total) {
+    for (const std::size_t k : keys)
+      if (mine[k] != none) {
+        ++total;
+        account_.at_border += sent[mine[k]];
+      }
+  };
+  count(removed, account_.removed);
+  count(queued_by, account_.added);
+  find_grid(whole, true);
+  key_.clear();
+  for (std::size_t i = 0; i < whole.size(); ++i)
+    if (owner(grid_.coord(whole.x[i], axis_)) != comm_.rank()) whole.queue_remove(i);
+    else key_.push_back(i);
+  whole.compact();
+  ps = std::move(whole);
+  add_halo(ps);
+}
+
+template <int D>
 ParticleSet<D> Decomposition<D>::gather(const ParticleSet<D>& owned) const {
-  const std::vector<std::string> all = comm_.all_gather(pack(owned, all_indices(owned.size()), key_));
+  const std::size_t own = own_ == kNoHalo ? owned.size() : own_;
+  const std::vector<std::string> all = comm_.all_gather(pack(owned, all_indices(own), key_));
   ParticleSet<D> out;
   if (owned.has_porous_fields()) out.add_porous_fields();  // the fields pack sent
   std::vector<std::uint64_t> keys;

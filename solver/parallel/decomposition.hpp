@@ -99,6 +99,14 @@ class Decomposition {
   /// each addition the id the one process gives it. `queued_by[k]`: the index in `ps` of the
   /// particle that queued addition k. Collective.
   void compact(ParticleSet<D>& ps, const std::vector<std::size_t>& queued_by);
+  /// Mid-step, after a compaction done on the whole scene on every rank (adaptive sampling): `ps`,
+  /// this rank's particles with their halo, becomes this rank's share of `whole`, the scene in its
+  /// one-process order after the compaction (the same on every rank): keys are its indices, the
+  /// bounds its bounds, the slabs kept; then a new halo is added. `removed` and `queued_by` are the
+  /// compaction's (AdaptChanges: indices before it, which were the keys) and count in the account
+  /// where this rank owned the particles. Collective.
+  void adopt(ParticleSet<D>& ps, ParticleSet<D> whole, const std::vector<std::size_t>& removed,
+             const std::vector<std::size_t>& queued_by);
   /// Overwrites the halo's values of `field` (one entry per particle of `ps` with its halo) with
   /// their owners' values.
   template <class Field>
@@ -112,7 +120,8 @@ class Decomposition {
   const GridBounds<D>& bounds() const { return bounds_; }
   /// The key (place in the one-process storage order) of particle i of `ps`.
   std::uint64_t key(std::size_t i) const { return key_[i]; }
-  /// Every rank's particles `owned` (no halo) in the one-process order, on every rank. Collective.
+  /// Every rank's particles `owned` in the one-process order, on every rank; during a step the
+  /// halo after a rank's own particles is left out. Collective.
   ParticleSet<D> gather(const ParticleSet<D>& owned) const;
   /// The account summed over the ranks. Collective.
   DecompositionAccount totals() const;
@@ -135,6 +144,8 @@ class Decomposition {
   void sort_keys(ParticleSet<D>& ps);
   /// Appends the particles `received` (packed, each with its key) to ps and the keys.
   void append(ParticleSet<D>& ps, const std::vector<std::string>& received);
+  /// For each of this rank's `own` particles, 1 if another rank holds a halo copy of it.
+  std::vector<std::uint8_t> sent_flags(std::size_t own) const;
   /// Puts ps and the keys in `order` (new index k holds old order[k]; particles left out are dropped).
   void reorder(ParticleSet<D>& ps, const std::vector<std::size_t>& order);
   static constexpr std::size_t kNoHalo = SIZE_MAX;

@@ -70,8 +70,8 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params, std::
   last_dt_ = params_.dt_max;
   check_state();
   if (!ranks || ranks->size() == 1) return;
-  if ((has_sand_ && params_.porous) || params_.adaptive)
-    throw std::logic_error("the domain decomposition runs water, dry sand, fixed walls and fixed porous beds only");
+  if (has_sand_ && params_.porous)
+    throw std::logic_error("the domain decomposition does not run wet sand (sand with porous flow)");
   dd_.emplace(*ranks);
   dd_->scatter(ps_);
 }
@@ -300,9 +300,29 @@ void Simulator<D>::save_last_good() {
 template <int D>
 void Simulator<D>::adapt() {
   auto t = timers_.time(Stage::Adaptive);
-  adapt_particles<D>(ps_, nb_, *params_.adaptive, time_, adapt_account_);
-  nb_.rebuild(ps_);
+  if (dd_) {
+    adapt_over_ranks();
+  } else {
+    adapt_particles<D>(ps_, nb_, *params_.adaptive, time_, adapt_account_);
+    nb_.rebuild(ps_);
+  }
   set_density_offsets(ps_, nb_, params_.water.density_kernel, params_.water.rest_density);
+  refresh_halo(ps_.density_offset);
+}
+
+template <int D>
+void Simulator<D>::adapt_over_ranks() {
+  // The feature size is a function of the whole scene's surface, and the greedy pairing of merges
+  // a sequence over the whole scene in storage order: every rank runs the one-process pass on the
+  // whole scene (its own particles' densities are complete, the halo is left out), then keeps its
+  // share of the result with a new halo.
+  ParticleSet<D> whole = dd_->gather(ps_);
+  NeighbourGrid<D> nb;
+  nb.rebuild(whole);
+  const AdaptChanges changes = adapt_particles<D>(whole, nb, *params_.adaptive, time_, adapt_account_);
+  dd_->adopt(ps_, std::move(whole), changes.removed, changes.queued_by);
+  nb_.impose_bounds(dd_->bounds());
+  nb_.rebuild(ps_);
 }
 
 template <int D>

@@ -49,8 +49,8 @@ class Simulator {
  public:
   /// `particles`: the whole scene. With `ranks` of more than one rank, the scene is decomposed over
   /// them (parallel/decomposition.hpp): every rank passes the same scene and keeps its share, and
-  /// the run is bitwise the one-process run. Decomposed: water, dry sand, fixed walls and porous flow
-  /// through fixed beds (no wet sand or adaptivity; the caller refuses those first,
+  /// the run is bitwise the one-process run. Decomposed: water, dry sand, fixed walls, porous flow
+  /// through fixed beds and adaptive sampling (no wet sand; the caller refuses it first,
   /// check_decomposable in method/registry.hpp).
   Simulator(ParticleSet<D> particles, SimulationParams params, std::optional<Comm> ranks = std::nullopt);
 
@@ -111,6 +111,8 @@ class Simulator {
   /// after the densities of the step: rebuilds the neighbour lists for the new particles and
   /// sets the density offsets so that no particle's density jumps.
   void adapt();
+  /// adapt() over MPI ranks: the pass on the gathered whole scene, then this rank's share of it.
+  void adapt_over_ranks();
   /// Throws BlowUpError naming the first offending particle (lowest index; decomposed: lowest key,
   /// its index in the one-process run, on every rank).
   void check_state() const;
