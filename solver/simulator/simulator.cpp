@@ -322,6 +322,7 @@ void Simulator<D>::adapt_over_ranks() {
   const AdaptChanges changes = adapt_particles<D>(whole, nb, *params_.adaptive, time_, adapt_account_);
   dd_->adopt(ps_, std::move(whole), changes.removed, changes.queued_by);
   nb_.impose_bounds(dd_->bounds());
+  nb_.list_only_first(dd_->own());  // the new share's own particles (the halo's sums would be overwritten)
   nb_.rebuild(ps_);
 }
 
