@@ -26,8 +26,8 @@ void check_method(const CaseSpec& spec);
 CaseSpec with_method(CaseSpec spec, const std::string& name);
 
 /// Throws InputError (the case file, the JSON path of the feature, the rule) when the case has
-/// something the domain decomposition over MPI ranks does not run yet: a method other than SPH,
-/// wet sand (sand and porous flow together) or split and merge. Allocates nothing.
+/// something the domain decomposition over MPI ranks does not run yet: a method other than SPH
+/// or split and merge. Allocates nothing.
 void check_decomposable(const CaseSpec& spec);
 
 /// Whether method `name` writes checkpoints that resume bitwise (Method::writes_checkpoints).

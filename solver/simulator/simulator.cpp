@@ -70,8 +70,7 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params, std::
   last_dt_ = params_.dt_max;
   check_state();
   if (!ranks || ranks->size() == 1) return;
-  if ((has_sand_ && params_.porous) || params_.adaptive)
-    throw std::logic_error("the domain decomposition runs water, dry sand, fixed walls and fixed porous beds only");
+  if (params_.adaptive) throw std::logic_error("the domain decomposition does not run adaptive sampling");
   dd_.emplace(*ranks);
   dd_->scatter(ps_);
 }

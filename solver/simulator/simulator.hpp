@@ -49,9 +49,9 @@ class Simulator {
  public:
   /// `particles`: the whole scene. With `ranks` of more than one rank, the scene is decomposed over
   /// them (parallel/decomposition.hpp): every rank passes the same scene and keeps its share, and
-  /// the run is bitwise the one-process run. Decomposed: water, dry sand, fixed walls and porous flow
-  /// through fixed beds (no wet sand or adaptivity; the caller refuses those first,
-  /// check_decomposable in method/registry.hpp).
+  /// the run is bitwise the one-process run. Decomposed: water, sand (dry or wet), fixed walls and
+  /// porous flow (no adaptivity; the caller refuses it first, check_decomposable in
+  /// method/registry.hpp).
   Simulator(ParticleSet<D> particles, SimulationParams params, std::optional<Comm> ranks = std::nullopt);
 
   /// Advances by one step; returns the step size used. Throws BlowUpError if the new state is
