@@ -8,6 +8,7 @@ bool run_twin(const CaseSpec& twin, double dx, const RunSettings& settings, cons
   twin_settings.out_dir = settings.out_dir + "/" + subdir;
   twin_settings.end_time = settings.end_time;
   twin_settings.label = settings.label + " (" + what + ")";
+  twin_settings.decompose = settings.decompose;  // over ranks, one twin on them all, written by rank 0
   twin_result = run_single(twin, dx, twin_settings);
   if (twin_result.status != "error") return true;
   run.status = "error";

@@ -85,14 +85,6 @@ void check_same_run(const Checkpoint& c, const CaseSpec& spec, double dx) {
 void check_decomposable(const CaseSpec& spec) {
   const std::string rule = " is not decomposed over MPI ranks yet: run this case as one process (without mpirun)";
   if (spec.method != "sph") throw InputError(spec.file, "/method", "method \"" + spec.method + "\"" + rule);
-  if (spec.porous) {
-    for (std::size_t b = 0; b < spec.blocks.size(); ++b)
-      if (spec.blocks[b].phase() == Phase::Sand)
-        throw InputError(spec.file, "/blocks/" + std::to_string(b), "sand with porous flow (wet sand)" + rule);
-    for (std::size_t m = 0; m < spec.meshes.size(); ++m)
-      if (spec.meshes[m].phase == Phase::Sand)
-        throw InputError(spec.file, "/meshes/" + std::to_string(m), "sand with porous flow (wet sand)" + rule);
-  }
 }
 
 std::vector<std::string> method_names() {

@@ -26,17 +26,16 @@ void check_method(const CaseSpec& spec);
 CaseSpec with_method(CaseSpec spec, const std::string& name);
 
 /// Throws InputError (the case file, the JSON path of the feature, the rule) when the case has
-/// something the domain decomposition over MPI ranks does not run yet: a method other than SPH,
-/// or wet sand (sand and porous flow together). Allocates nothing.
+/// something the domain decomposition over MPI ranks does not run yet: a method other than SPH.
+/// Allocates nothing.
 void check_decomposable(const CaseSpec& spec);
 
 /// Whether method `name` writes checkpoints that resume bitwise (Method::writes_checkpoints).
 bool method_writes_checkpoints(const std::string& name);
 
 /// The case's method at t = 0 at spacing dx (check_method first). `decompose`: the scene is
-/// decomposed over the MPI ranks of the run, every rank calling this with the same case (SPH of
-/// water, dry sand, walls and fixed porous beds only; InputError naming the feature otherwise,
-/// before anything is allocated).
+/// decomposed over the MPI ranks of the run, every rank calling this with the same case (SPH only;
+/// InputError naming the method otherwise, before anything is allocated).
 template <int D>
 std::unique_ptr<Method<D>> make_method(const CaseSpec& spec, double dx, bool decompose = false);
 

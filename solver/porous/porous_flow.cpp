@@ -678,6 +678,7 @@ PorousStepCounts porous_step(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, con
     diffuse_conserving(ps, nb, params, dt, w, ranks);
     update_rigid_pore_pressure(ps, nb, params, gravity, w, ranks);
     counts.created = emit_new(ps, params, w, ranks);
+    refresh(ranks, ps.absorbed, ps.emit_store, ps.m);  // absorb_small's receivers, after the stores' returns and emissions
   }
   counts.absorbed = absorb_small(ps, nb, params, w, ranks);
   update_rest_densities(ps, params, w);

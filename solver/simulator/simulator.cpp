@@ -70,8 +70,6 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params, std::
   last_dt_ = params_.dt_max;
   check_state();
   if (!ranks || ranks->size() == 1) return;
-  if (has_sand_ && params_.porous)
-    throw std::logic_error("the domain decomposition does not run wet sand (sand with porous flow)");
   dd_.emplace(*ranks);
   dd_->scatter(ps_);
 }

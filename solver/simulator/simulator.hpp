@@ -49,9 +49,9 @@ class Simulator {
  public:
   /// `particles`: the whole scene. With `ranks` of more than one rank, the scene is decomposed over
   /// them (parallel/decomposition.hpp): every rank passes the same scene and keeps its share, and
-  /// the run is bitwise the one-process run. Decomposed: water, dry sand, fixed walls, porous flow
-  /// through fixed beds and adaptive sampling (no wet sand; the caller refuses it first,
-  /// check_decomposable in method/registry.hpp).
+  /// the run is bitwise the one-process run. Decomposed: every SPH scene (water, dry and wet sand,
+  /// walls, porous flow, adaptive sampling); other methods are refused by the caller first
+  /// (check_decomposable in method/registry.hpp).
   Simulator(ParticleSet<D> particles, SimulationParams params, std::optional<Comm> ranks = std::nullopt);
 
   /// Advances by one step; returns the step size used. Throws BlowUpError if the new state is
