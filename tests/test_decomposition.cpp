@@ -501,10 +501,10 @@ BOOST_AUTO_TEST_CASE(adaptive_wet_sand_over_2_and_3_ranks_is_the_one_process_run
 // code 2 and a message naming the case file, the JSON path and the rule; nothing is written.
 BOOST_AUTO_TEST_CASE(a_case_of_another_method_over_2_ranks_stops_with_exit_code_2) {
   if (!have_mpi()) return;
-  const std::string out = test::fresh_path("decomposed_flip");
-  const test::ProcessResult r = sandcastle(2, {"run", cases + "/flip_zb05/case.json", "--out", out});
+  const std::string out = test::fresh_path("decomposed_mpm");
+  const test::ProcessResult r = sandcastle(2, {"run", cases + "/column_collapse/case.json", "--method", "mpm", "--out", out});
   BOOST_TEST(r.exit_code == 2);
-  BOOST_TEST(r.err.find("flip_zb05/case.json") != std::string::npos);
+  BOOST_TEST(r.err.find("column_collapse/case.json") != std::string::npos);
   BOOST_TEST(r.err.find("/method") != std::string::npos);
   BOOST_TEST(r.err.find("not decomposed") != std::string::npos);
   BOOST_TEST(!fs::exists(out));
