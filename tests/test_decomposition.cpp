@@ -11,6 +11,7 @@
 // sampling (splits and merges next to a slab's border, passes on the gathered scene) gives the
 // one-process state and checkpoint, also beside wet sand; a method other than SPH is refused.
 #include <boost/test/unit_test.hpp>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -135,6 +136,29 @@ std::vector<Printed> runs_agree(const std::string& case_file) {
   return out;
 }
 
+/// The checkpoint of step `every` written by a run of the case file over 3 ranks, resumed on each
+/// of `resume_on` ranks: the 3-rank run and every resumed run end with the checksum of the
+/// uninterrupted one-process run. Returns what the 3-rank run and each resumed run printed.
+std::vector<Printed> checkpoint_resumes(const std::string& case_file, int every, const std::vector<int>& resume_on = {2}) {
+  const std::string root = test::fresh_path("decomposed_restart");
+  const test::ProcessResult straight = sandcastle(1, {"run", case_file, "--out", root + "/straight"});
+  const test::ProcessResult three = sandcastle(3, {"run", case_file, "--out", root + "/three", "--checkpoint-every", std::to_string(every)});
+  std::vector<Printed> out{printed(three)};
+  BOOST_TEST(out[0].checksum == printed(straight).checksum);
+  char name[32];
+  std::snprintf(name, sizeof name, "checkpoint_%08d.ckpt", every);
+  const std::string ckpt = root + "/three/" + name;
+  BOOST_TEST_REQUIRE(fs::exists(ckpt));
+  for (const int ranks : resume_on) {
+    const test::ProcessResult resumed = sandcastle(ranks, {"run", case_file, "--out", root + "/resumed" + std::to_string(ranks), "--resume", ckpt});
+    BOOST_TEST_INFO("resumed on " << ranks << ": " << resumed.out);
+    out.push_back(printed(resumed));
+    BOOST_TEST(out.back().checksum == printed(straight).checksum);
+  }
+  fs::remove_all(root);
+  return out;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(decomposition)
@@ -221,18 +245,7 @@ BOOST_AUTO_TEST_CASE(dam_break_over_2_and_3_ranks_migrates_rebalances_and_is_the
 BOOST_AUTO_TEST_CASE(checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum) {
   if (!have_mpi()) return;
   const std::string file = shortened_case("dam_break_square", 0.06);
-  const std::string root = test::fresh_path("decomposed_restart");
-  const test::ProcessResult straight = sandcastle(1, {"run", file, "--out", root + "/straight"});
-  const test::ProcessResult three = sandcastle(3, {"run", file, "--out", root + "/three", "--checkpoint-every", "200"});
-  BOOST_TEST(printed(three).checksum == printed(straight).checksum);
-  const std::string ckpt = root + "/three/checkpoint_00000200.ckpt";
-  BOOST_TEST_REQUIRE(fs::exists(ckpt));
-  for (const int ranks : {2, 1}) {
-    const test::ProcessResult resumed = sandcastle(ranks, {"run", file, "--out", root + "/resumed" + std::to_string(ranks), "--resume", ckpt});
-    BOOST_TEST_INFO("resumed on " << ranks << ": " << resumed.out);
-    BOOST_TEST(printed(resumed).checksum == printed(straight).checksum);
-  }
-  fs::remove_all(root);
+  checkpoint_resumes(file, 200, {2, 1});
   fs::remove_all(fs::path(file).parent_path());
 }
 
@@ -324,17 +337,7 @@ BOOST_AUTO_TEST_CASE(porous_beds_over_2_and_3_ranks_are_the_one_process_run) {
 BOOST_AUTO_TEST_CASE(porous_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum) {
   if (!have_mpi()) return;
   const std::string file = shortened_case("green_ampt", 0.15);
-  const std::string root = test::fresh_path("decomposed_porous_restart");
-  const test::ProcessResult straight = sandcastle(1, {"run", file, "--out", root + "/straight"});
-  const test::ProcessResult three = sandcastle(3, {"run", file, "--out", root + "/three", "--checkpoint-every", "300"});
-  BOOST_TEST(printed(three).checksum == printed(straight).checksum);
-  BOOST_TEST(printed(three).removed > 0);
-  const std::string ckpt = root + "/three/checkpoint_00000300.ckpt";
-  BOOST_TEST_REQUIRE(fs::exists(ckpt));
-  const test::ProcessResult resumed = sandcastle(2, {"run", file, "--out", root + "/resumed", "--resume", ckpt});
-  BOOST_TEST_INFO("resumed: " << resumed.out);
-  BOOST_TEST(printed(resumed).checksum == printed(straight).checksum);
-  fs::remove_all(root);
+  BOOST_TEST(checkpoint_resumes(file, 300)[0].removed > 0);
   fs::remove_all(fs::path(file).parent_path());
 }
 
@@ -387,15 +390,7 @@ BOOST_AUTO_TEST_CASE(rigid_spin_3d_over_2_and_3_ranks_is_the_one_process_run) {
 BOOST_AUTO_TEST_CASE(sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum) {
   if (!have_mpi()) return;
   const std::string file = shortened_case("column_collapse", 0.2);
-  const std::string root = test::fresh_path("decomposed_sand_restart");
-  const test::ProcessResult straight = sandcastle(1, {"run", file, "--out", root + "/straight"});
-  const test::ProcessResult three = sandcastle(3, {"run", file, "--out", root + "/three", "--checkpoint-every", "400"});
-  BOOST_TEST(printed(three).checksum == printed(straight).checksum);
-  const std::string ckpt = root + "/three/checkpoint_00000400.ckpt";
-  BOOST_TEST_REQUIRE(fs::exists(ckpt));
-  const test::ProcessResult resumed = sandcastle(2, {"run", file, "--out", root + "/resumed", "--resume", ckpt});
-  BOOST_TEST(printed(resumed).checksum == printed(straight).checksum);
-  fs::remove_all(root);
+  checkpoint_resumes(file, 400);
   fs::remove_all(fs::path(file).parent_path());
 }
 
@@ -453,17 +448,7 @@ BOOST_AUTO_TEST_CASE(adaptive_checkpoint_of_3_ranks_resumes_on_2_with_the_uninte
   if (!have_mpi()) return;
   const json no_twin = {{"validation", {{"uniform_twin", nullptr}, {"metrics", {{"front_vs_uniform_rms", nullptr}}}}}};
   const std::string file = shortened_case("dam_break_adaptive", 0.1, no_twin);
-  const std::string root = test::fresh_path("decomposed_adaptive_restart");
-  const test::ProcessResult straight = sandcastle(1, {"run", file, "--out", root + "/straight"});
-  const test::ProcessResult three = sandcastle(3, {"run", file, "--out", root + "/three", "--checkpoint-every", "50"});
-  BOOST_TEST(printed(three).checksum == printed(straight).checksum);
-  const std::string ckpt = root + "/three/checkpoint_00000050.ckpt";
-  BOOST_TEST_REQUIRE(fs::exists(ckpt));
-  const test::ProcessResult resumed = sandcastle(2, {"run", file, "--out", root + "/resumed", "--resume", ckpt});
-  BOOST_TEST_INFO("resumed: " << resumed.out);
-  BOOST_TEST(printed(resumed).checksum == printed(straight).checksum);
-  BOOST_TEST(printed(resumed).removed > 0);
-  fs::remove_all(root);
+  BOOST_TEST(checkpoint_resumes(file, 50)[1].removed > 0);  // passes go on after the resume
   fs::remove_all(fs::path(file).parent_path());
 }
 
@@ -472,17 +457,7 @@ BOOST_AUTO_TEST_CASE(adaptive_checkpoint_of_3_ranks_resumes_on_2_with_the_uninte
 BOOST_AUTO_TEST_CASE(wet_sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum) {
   if (!have_mpi()) return;
   const std::string file = shortened_case("wet_sand_collapse", 0.2);
-  const std::string root = test::fresh_path("decomposed_wet_restart");
-  const test::ProcessResult straight = sandcastle(1, {"run", file, "--out", root + "/straight"});
-  const test::ProcessResult three = sandcastle(3, {"run", file, "--out", root + "/three", "--checkpoint-every", "600"});
-  BOOST_TEST(printed(three).checksum == printed(straight).checksum);
-  BOOST_TEST(printed(three).removed > 0);
-  const std::string ckpt = root + "/three/checkpoint_00000600.ckpt";
-  BOOST_TEST_REQUIRE(fs::exists(ckpt));
-  const test::ProcessResult resumed = sandcastle(2, {"run", file, "--out", root + "/resumed", "--resume", ckpt});
-  BOOST_TEST_INFO("resumed: " << resumed.out);
-  BOOST_TEST(printed(resumed).checksum == printed(straight).checksum);
-  fs::remove_all(root);
+  BOOST_TEST(checkpoint_resumes(file, 600)[0].removed > 0);
   fs::remove_all(fs::path(file).parent_path());
 }
 
