@@ -21,6 +21,7 @@
 #include "core/particle_set.hpp"
 #include "io/json_reader.hpp"
 #include "parallel/decomposition.hpp"
+#include "support/long_run.hpp"
 #include "support/process.hpp"
 #include "sweep.hpp"
 
@@ -219,7 +220,7 @@ BOOST_AUTO_TEST_CASE(compaction_keys_are_the_one_process_indices_after_compact) 
 
 // The water column at rest, its start-up (0.3 s, about 2,300 steps with the CFL step): the
 // decomposed runs end bitwise where the one process ends.
-BOOST_AUTO_TEST_CASE(hydrostatic_over_2_and_3_ranks_is_the_one_process_run) {
+BOOST_AUTO_TEST_CASE(hydrostatic_over_2_and_3_ranks_is_the_one_process_run, *test::long_run()) {
   if (!have_mpi()) return;
   const std::string file = shortened_case("hydrostatic", 0.3);
   const std::vector<Printed> p = runs_agree(file);
@@ -242,7 +243,7 @@ BOOST_AUTO_TEST_CASE(dam_break_over_2_and_3_ranks_migrates_rebalances_and_is_the
 }
 
 // A checkpoint written by 3 ranks resumes on 2 (and on 1) with the checksum of the uninterrupted run.
-BOOST_AUTO_TEST_CASE(checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum) {
+BOOST_AUTO_TEST_CASE(checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum, *test::long_run()) {
   if (!have_mpi()) return;
   const std::string file = shortened_case("dam_break_square", 0.06);
   checkpoint_resumes(file, 200, {2, 1});
@@ -317,7 +318,7 @@ BOOST_AUTO_TEST_CASE(bench_over_2_ranks_reports_the_halo_share_and_the_one_proce
 // lie at the pond and the seepage face, and particles that another rank holds a halo copy of are
 // removed or emit there (the compaction keys, the scene-wide water columns and pore-pressure solve,
 // the gathered absorptions and placements at work at a border).
-BOOST_AUTO_TEST_CASE(porous_beds_over_2_and_3_ranks_are_the_one_process_run) {
+BOOST_AUTO_TEST_CASE(porous_beds_over_2_and_3_ranks_are_the_one_process_run, *test::long_run()) {
   if (!have_mpi()) return;
   for (const auto& [name, end] : std::vector<std::pair<std::string, double>>{{"darcy_column", 0.5}, {"green_ampt", 0.15}, {"capillary_rise", 0.15}}) {
     BOOST_TEST_CONTEXT(name) {
@@ -353,13 +354,13 @@ void sand_runs_agree(const std::string& name, double end, const json& patch = js
 }
 
 // The granular column collapsing over the floor: frictional stress and wall friction across the cut.
-BOOST_AUTO_TEST_CASE(column_collapse_over_2_and_3_ranks_is_the_one_process_run) {
+BOOST_AUTO_TEST_CASE(column_collapse_over_2_and_3_ranks_is_the_one_process_run, *test::long_run()) {
   if (!have_mpi()) return;
   sand_runs_agree("column_collapse", 0.2);
 }
 
 // The pile spreading to its angle of repose.
-BOOST_AUTO_TEST_CASE(angle_of_repose_over_2_and_3_ranks_is_the_one_process_run) {
+BOOST_AUTO_TEST_CASE(angle_of_repose_over_2_and_3_ranks_is_the_one_process_run, *test::long_run()) {
   if (!have_mpi()) return;
   sand_runs_agree("angle_of_repose", 0.2);
 }
@@ -372,7 +373,7 @@ BOOST_AUTO_TEST_CASE(rigid_cluster_over_2_and_3_ranks_is_the_one_process_run) {
 
 // The same block landing on a no-slip floor: the floor's contact impulses on a cluster cut by the
 // slabs (resolve_wall_contacts) swept in the one-process contact order.
-BOOST_AUTO_TEST_CASE(rigid_cluster_landing_on_a_floor_over_2_and_3_ranks_is_the_one_process_run) {
+BOOST_AUTO_TEST_CASE(rigid_cluster_landing_on_a_floor_over_2_and_3_ranks_is_the_one_process_run, *test::long_run()) {
   if (!have_mpi()) return;
   const json floor = {{"tank", {{"min", {-0.15, -0.03}}, {"max", {0.15, 0.2}},
                                 {"sides", {{"x-", "slip"}, {"x+", "slip"}, {"y-", "no_slip"}, {"y+", "open"}}}}}};
@@ -381,13 +382,13 @@ BOOST_AUTO_TEST_CASE(rigid_cluster_landing_on_a_floor_over_2_and_3_ranks_is_the_
 
 // Three spinning rigid blocks in 3-D: the middle one turns across the cut of 2 ranks (at 3 ranks the
 // cuts fall between the blocks).
-BOOST_AUTO_TEST_CASE(rigid_spin_3d_over_2_and_3_ranks_is_the_one_process_run) {
+BOOST_AUTO_TEST_CASE(rigid_spin_3d_over_2_and_3_ranks_is_the_one_process_run, *test::long_run()) {
   if (!have_mpi()) return;
   sand_runs_agree("rigid_spin_3d", 0.2);
 }
 
 // A checkpoint of a sand run written by 3 ranks resumes on 2 with the uninterrupted checksum.
-BOOST_AUTO_TEST_CASE(sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum) {
+BOOST_AUTO_TEST_CASE(sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum, *test::long_run()) {
   if (!have_mpi()) return;
   const std::string file = shortened_case("column_collapse", 0.2);
   checkpoint_resumes(file, 400);
@@ -398,7 +399,7 @@ BOOST_AUTO_TEST_CASE(sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrup
 // front runs over the floor, and the forced cycles of split_merge (everything merged, then split
 // back). Every pass runs on the gathered scene on every rank; over 2 and 3 ranks the runs end
 // bitwise in the one-process state, with particles split or merged next to a slab's border.
-BOOST_AUTO_TEST_CASE(adaptive_runs_over_2_and_3_ranks_are_the_one_process_run) {
+BOOST_AUTO_TEST_CASE(adaptive_runs_over_2_and_3_ranks_are_the_one_process_run, *test::long_run()) {
   if (!have_mpi()) return;
   // Without the uniform twins (one-process runs of their own) and the metrics comparing with them.
   const json no_twin = {{"validation", {{"uniform_twin", nullptr},
@@ -423,7 +424,7 @@ BOOST_AUTO_TEST_CASE(adaptive_runs_over_2_and_3_ranks_are_the_one_process_run) {
 // the water in the duck of thesis_duck (coarsened to keep the test short) likewise. The decomposed
 // runs end bitwise where the one process ends, with water particles absorbed next to a slab's
 // border (by particles another rank holds a halo copy of).
-BOOST_AUTO_TEST_CASE(wet_sand_over_2_and_3_ranks_is_the_one_process_run) {
+BOOST_AUTO_TEST_CASE(wet_sand_over_2_and_3_ranks_is_the_one_process_run, *test::long_run()) {
   if (!have_mpi()) return;
   json duck = read_json_file(cases + "/thesis_duck/case.json")["meshes"];
   duck[0]["file"] = cases + "/meshes/duck.obj";  // the shortened case lies in another folder
@@ -454,7 +455,7 @@ BOOST_AUTO_TEST_CASE(adaptive_checkpoint_of_3_ranks_resumes_on_2_with_the_uninte
 
 // A wet sand checkpoint written by 3 ranks, after the sand absorbed water, resumes on 2 with the
 // uninterrupted checksum while the absorption goes on.
-BOOST_AUTO_TEST_CASE(wet_sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum) {
+BOOST_AUTO_TEST_CASE(wet_sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum, *test::long_run()) {
   if (!have_mpi()) return;
   const std::string file = shortened_case("wet_sand_collapse", 0.2);
   BOOST_TEST(checkpoint_resumes(file, 600)[0].removed > 0);
@@ -463,7 +464,7 @@ BOOST_AUTO_TEST_CASE(wet_sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninte
 
 // Wet sand with adaptive sampling (sand_water_adaptive_3d, shortened past its first pass): the water
 // splits and merges beside moving porous sand that absorbs it, every decomposed feature at once.
-BOOST_AUTO_TEST_CASE(adaptive_wet_sand_over_2_and_3_ranks_is_the_one_process_run) {
+BOOST_AUTO_TEST_CASE(adaptive_wet_sand_over_2_and_3_ranks_is_the_one_process_run, *test::long_run()) {
   if (!have_mpi()) return;
   const std::string file = shortened_case("sand_water_adaptive_3d", 0.03);
   const std::vector<Printed> p = runs_agree(file);

@@ -11,6 +11,7 @@
 #include "scene/scene_builder.hpp"
 #include "dem/water_coupling.hpp"
 #include "dem/wetness.hpp"
+#include "support/long_run.hpp"
 
 using namespace sc;
 using namespace sc::dem;
@@ -260,7 +261,7 @@ BOOST_AUTO_TEST_CASE(sphere_rolls_or_slides_on_45_degree_incline) {
 // A sphere launched sliding at u0 without spin on a rough floor (MFIX DEM04, docs/references.md §12):
 // friction μ m g slows it and spins it up until it rolls, at μ g t/u0 = 2/7 with v = ωR = 5/7 u0,
 // both within 1 %.
-BOOST_AUTO_TEST_CASE(sphere_slipping_on_rough_floor_rolls_at_five_sevenths) {
+BOOST_AUTO_TEST_CASE(sphere_slipping_on_rough_floor_rolls_at_five_sevenths, *test::long_run()) {
   Grains<3> g;
   const double R = 0.5e-3, u0 = 0.1, mu = 0.2;
   g.add(Vec<3>(0.0, R, 0.0), R, 1e4);
@@ -888,7 +889,7 @@ BOOST_AUTO_TEST_CASE(pairs_evaluated_once_give_each_grain_its_own_sums) {
 
 // Every loop gathers per grain (or water particle) in a fixed order: 1 and 2 OpenMP threads give
 // bitwise the same grains and water, dry (pile) and wet (coupled scene).
-BOOST_AUTO_TEST_CASE(one_and_two_threads_bitwise_identical) {
+BOOST_AUTO_TEST_CASE(one_and_two_threads_bitwise_identical, *test::long_run()) {
   const int saved = omp_get_max_threads();
   Grains<2> a, b;
   repose_angle_2d(0.5, 0.1, 1, &a);

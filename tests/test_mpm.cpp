@@ -13,6 +13,7 @@
 #include "mpm/svd.hpp"
 #include "reference/analytic/rankine.hpp"
 #include "reference/analytic/terzaghi.hpp"
+#include "support/long_run.hpp"
 
 using namespace sc;
 using namespace sc::mpm;
@@ -276,7 +277,7 @@ BOOST_AUTO_TEST_CASE(a_cohesive_block_at_rest_without_gravity_keeps_its_elastic_
 // 0.2 m wide and H = 0.1 m high, ρ = 1800 kg/m^3, on grids of 0.01 and 0.005 m (CB-Geo's
 // hydrostatic column), damped to rest: the bottom row's σ_yy is −ρ g H to within 5 % on the coarse
 // grid and the error at least nearly halves under refinement (first order or better).
-BOOST_AUTO_TEST_CASE(an_elastic_column_at_rest_carries_its_weight) {
+BOOST_AUTO_TEST_CASE(an_elastic_column_at_rest_carries_its_weight, *test::long_run()) {
   const double coarse = column_stress_error<2>(0.2, 0.1, 0.01), fine = column_stress_error<2>(0.2, 0.1, 0.005);
   BOOST_TEST_MESSAGE("elastic column: bottom sigma_yy error " << coarse << " (h 0.01), " << fine << " (h 0.005)");
   BOOST_TEST(coarse <= 0.05);
@@ -288,7 +289,7 @@ BOOST_AUTO_TEST_CASE(an_elastic_column_at_rest_carries_its_weight) {
 // σ_yy at the bottom row is −(ρ − (1 − n) ρ_w) g H within 5 % on the coarse grid. The grains take the
 // share 1 − n_i of the pore pressure's force (node_porosity); without it they would carry −ρ g H,
 // 50 % more.
-BOOST_AUTO_TEST_CASE(a_saturated_elastic_column_carries_its_buoyant_weight) {
+BOOST_AUTO_TEST_CASE(a_saturated_elastic_column_carries_its_buoyant_weight, *test::long_run()) {
   const double error = column_stress_error<2>(0.2, 0.1, 0.01, true);
   BOOST_TEST_MESSAGE("saturated column: bottom effective sigma_yy error " << error << " (h 0.01)");
   BOOST_TEST(error <= 0.05);
@@ -334,7 +335,7 @@ BOOST_AUTO_TEST_CASE(a_still_pond_over_a_held_bed_keeps_the_hydrostatic_pore_pre
 
 // The same column in 3-D (a 0.04 m square footprint, the coarse grid): the dimension-generic
 // transfers and the 3-D cone carry the weight as in 2-D.
-BOOST_AUTO_TEST_CASE(an_elastic_column_at_rest_carries_its_weight_in_3d) {
+BOOST_AUTO_TEST_CASE(an_elastic_column_at_rest_carries_its_weight_in_3d, *test::long_run()) {
   const double error = column_stress_error<3>(0.04, 0.1, 0.01);
   BOOST_TEST_MESSAGE("elastic column 3-D: bottom sigma_zz error " << error << " (h 0.01)");
   BOOST_TEST(error <= 0.05);
@@ -620,7 +621,7 @@ double dry_cut_corner_moved(double phi, double H) {
 // moved less than 1 % of H after 1 s, elastic settling included) and at 1.25 H_c it falls (the
 // corner has moved more than a quarter of H), at φ = 30° and 35° (H_c = 0.0883 and 0.0979 m): the
 // method references' ±25 %. The heights follow the friction angle through tan(45° + φ/2).
-BOOST_AUTO_TEST_CASE(a_cut_stands_below_rankines_height_and_falls_above_it) {
+BOOST_AUTO_TEST_CASE(a_cut_stands_below_rankines_height_and_falls_above_it, *test::long_run()) {
   for (const double phi : {30.0, 35.0}) {
     const double Hc = analytic::rankine_critical_height(cut_cohesion, phi, cut_density, 9.81);
     const double low = dry_cut_corner_moved(phi, 0.75 * Hc), high = dry_cut_corner_moved(phi, 1.25 * Hc);
@@ -685,7 +686,7 @@ Wetting wet_cut(double rate, bool cohesion_loss, double until) {
 // moved less than 1 % of H by then: the water's weight and drag alone do not bring it down. A faster
 // inflow, 0.04 m/s, brings it down sooner (the method references: time to collapse decreasing
 // with the inflow rate).
-BOOST_AUTO_TEST_CASE(seeping_water_brings_a_standing_cut_down_and_faster_inflow_sooner) {
+BOOST_AUTO_TEST_CASE(seeping_water_brings_a_standing_cut_down_and_faster_inflow_sooner, *test::long_run()) {
   const Wetting slow = wet_cut(0.02, true, 2.0);
   const Wetting twin = wet_cut(0.02, false, slow.fall_time > 0.0 ? slow.fall_time : 2.0);
   const Wetting fast = wet_cut(0.04, true, 2.0);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the unit tests (and the command they run) with AddressSanitizer and
-# UndefinedBehaviorSanitizer in build-asan/ and runs them (ctest -L unit).
+# UndefinedBehaviorSanitizer in build-asan/ and runs them (ctest -L unit), all but the long runs
+# (tests/support/long_run.hpp), which the README's test command runs in the Release build.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSANDCASTLE_SANITIZE=ON >/dev/null
