@@ -1,8 +1,11 @@
-// The blow-up guard's copy (Simulator::last_good) is the state at the start of the last step, field
-// for field, bit for bit, although it copies only what a step can change (ParticleSet::refresh_from).
+// The blow-up guard's copy (Simulator::last_good) is the state at the start of the last step (after
+// its storage sort, if it sorts), field for field, bit for bit, although it copies only what a step
+// can change (ParticleSet::refresh_from).
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cstring>
+#include <numeric>
 #include <utility>
 
 #include "case/case_file.hpp"
@@ -30,8 +33,20 @@ bool same_bits(const ParticleSet<D>& a, const ParticleSet<D>& b) {
   return same;
 }
 
+/// `ps` with its particles in the order of their ids (unique).
+template <int D>
+ParticleSet<D> in_id_order(ParticleSet<D> ps) {
+  std::vector<std::size_t> order(ps.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return ps.id[a] < ps.id[b]; });
+  ps.permute(order);
+  return ps;
+}
+
 /// Runs `steps` steps of a case at its quick spacing; after each, last_good() must equal the state
-/// before it (over kSortEvery = 16 steps, so steps with and without reordering are both seen).
+/// before it, and in its order except in a step that begins with a storage sort (every
+/// Simulator::kSortEvery = 16 steps), where the guard keeps the sorted state: the same particles,
+/// bit for bit, relabelled. Over 40 steps, steps with and without sorting are both seen.
 template <int D>
 void check_guard(const std::string& path, int steps) {
   const CaseSpec spec = load_case(path);
@@ -40,7 +55,10 @@ void check_guard(const std::string& path, int steps) {
   for (int k = 0; k < steps; ++k) {
     ParticleSet<D> before = std::as_const(sim).particles();
     sim.step();
-    BOOST_TEST_CONTEXT(path << " step " << k + 1) BOOST_TEST(same_bits<D>(sim.last_good(), before));
+    BOOST_TEST_CONTEXT(path << " step " << k + 1) {
+      if (k % 16 == 0) BOOST_TEST(same_bits<D>(in_id_order(sim.last_good()), in_id_order(std::move(before))));
+      else BOOST_TEST(same_bits<D>(sim.last_good(), before));
+    }
   }
   // Only a porous scene carries the porous-flow fields, through splits, merges and emissions.
   BOOST_TEST(sim.particles().has_porous_fields() == spec.porous.has_value());

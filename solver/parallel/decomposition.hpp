@@ -107,6 +107,16 @@ class Decomposition {
   /// where this rank owned the particles. Collective.
   void adopt(ParticleSet<D>& ps, ParticleSet<D> whole, const std::vector<std::size_t>& removed,
              const std::vector<std::size_t>& queued_by);
+  /// Keeps the keys of this rank's own particles as they stand at the start of a step (before the
+  /// halo): the keys of the blow-up guard's last good state.
+  void save_last_good_keys() { last_good_key_ = key_; }
+  /// Puts the kept keys back, as the blow-up guard puts this rank's particles back to their last
+  /// good state: a compaction in the failed step gave the particles new keys, and gather() and the
+  /// checkpoint order the last good state by its own. Test: decomposition/a_blow_up_in_a_step_with_an_adaptivity_pass_over_2_and_3_ranks_is_reported_as_in_one_process.
+  void restore_last_good_keys() {
+    key_ = last_good_key_;
+    own_ = kNoHalo;
+  }
   /// Overwrites the halo's values of `field` (one entry per particle of `ps` with its halo) with
   /// their owners' values.
   template <class Field>
@@ -155,7 +165,7 @@ class Decomposition {
   GridGeometry<D> grid_;
   int axis_ = 0;
   std::vector<std::int64_t> cut_;  // rank r's slab: axis cells [cut_[r - 1], cut_[r]) (r = 0: from −∞; last: to +∞)
-  std::vector<std::uint64_t> key_;
+  std::vector<std::uint64_t> key_, last_good_key_;
   std::vector<std::uint32_t> all_;  // 0, 1, ..., n - 1 for this rank's n particles (find_grid)
   std::size_t own_ = kNoHalo;  // during a step: this rank's own particles, the halo after them
   std::vector<std::vector<std::uint32_t>> send_, recv_;  // per rank: indices of ps sent to it / received from it in the halo

@@ -119,7 +119,7 @@ template <int D>
 void Simulator<D>::compute_forces() {
   {
     auto t = timers_.time(Stage::Neighbours);
-    sort_and_find_neighbours();
+    find_neighbours();
   }
   {
     auto t = timers_.time(Stage::Density);
@@ -177,16 +177,16 @@ void Simulator<D>::compute_densities() {
 }
 
 template <int D>
-void Simulator<D>::sort_and_find_neighbours() {
+void Simulator<D>::sort_storage() {
+  auto t = timers_.time(Stage::Neighbours);
+  nb_.bin_moving(ps_);
+  ps_.permute(nb_.storage_order());
+  nb_.bin(ps_);
+}
+
+template <int D>
+void Simulator<D>::find_neighbours() {
   nb_.bin_moving(ps_);  // a step moves no fixed wall particle
-  // Particles that are neighbours in space should be neighbours in memory: every kSortEvery steps
-  // (counted from the run's start, so a resumed run sorts at the same steps) they are put back in
-  // storage order (NeighbourGrid::storage_order). A sort only relabels them (ParticleSet::permute, ids kept).
-  // Decomposed, the ranks have put their particles in that order at the step's start.
-  if (!dd_ && steps_ % kSortEvery == 0) {
-    ps_.permute(nb_.storage_order());
-    nb_.bin(ps_);
-  }
   nb_.list_only_first(dd_ ? dd_->own() : SIZE_MAX);  // the halo's own sums would be overwritten
   nb_.find_pairs(ps_);
 }
@@ -242,6 +242,8 @@ double Simulator<D>::step() {
     auto th = timers_.time(Stage::Halo);
     dd_->begin_step(ps_, steps_, steps_ % kSortEvery == 0);
     nb_.impose_bounds(dd_->bounds());
+  } else if (steps_ % kSortEvery == 0) {
+    sort_storage();
   }
   save_last_good();
   if (dd_) {
@@ -278,6 +280,7 @@ double Simulator<D>::step() {
     else check_state();
   } catch (const BlowUpError&) {
     ps_ = last_good_;
+    if (dd_) dd_->restore_last_good_keys();
     guard_synced_ = false;
     throw;
   }
@@ -289,6 +292,7 @@ double Simulator<D>::step() {
 
 template <int D>
 void Simulator<D>::save_last_good() {
+  if (dd_) dd_->save_last_good_keys();
   if (guard_synced_ && last_good_.layout() == ps_.layout())
     last_good_.refresh_from(ps_);
   else

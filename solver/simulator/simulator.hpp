@@ -100,9 +100,14 @@ class Simulator {
   /// Mass m0 of a full water particle of level 0 in a porous scene, whose water particles lighter
   /// than a full one at their level are parcels of the exchange (is_partial_water), else 0.
   double partial_water_mass() const;
-  /// Neighbour lists of the current step, after putting the particles back in cell order every
-  /// kSortEvery steps.
-  void sort_and_find_neighbours();
+  /// Every kSortEvery steps (counted from the run's start, so a resumed run sorts at the same
+  /// steps), at the start of the step, before the blow-up guard keeps the state: particles that are
+  /// neighbours in space are put back next to each other in storage (NeighbourGrid::storage_order).
+  /// A sort only relabels them (ParticleSet::permute, ids kept). Decomposed, the ranks sort at the
+  /// same point (Decomposition::begin_step), so a last good state is in the one-process order.
+  void sort_storage();
+  /// Neighbour lists of the current step.
+  void find_neighbours();
   static constexpr long kSortEvery = 16;
   /// Sand (thesis Fig. 3.3): yield state and frictional stress, then the sand forces.
   void compute_sand_forces();
@@ -127,7 +132,8 @@ class Simulator {
   std::optional<StateError> state_error(std::size_t i) const;
 
   /// last_good_ ← ps_ at the start of a step: only what a step can change (refresh_from) when
-  /// last_good_ holds the start of the previous step and nothing but that step changed ps_ since.
+  /// last_good_ holds the start of the previous step and nothing but that step changed ps_ since;
+  /// over ranks, the decomposition keeps its keys alike.
   void save_last_good();
 
   ParticleSet<D> ps_, last_good_;
