@@ -106,12 +106,13 @@ void append_cluster_wall_contacts(const ParticleSet<D>& ps, const NeighbourGrid<
                                   std::vector<WallContact<D>>& out) {
   for (const auto i : members) {
     const double si = rest_spacing<D>(ps.m[i], ps.rho0[i]);
+    NeighbourSpacing<D> spacing_of;
     for (const auto w : nb.of(i)) {
       if (ps.phase_of(w) != Phase::Boundary || ps.porosity_of(w) != 0.0) continue;
       const Vec<D> d = ps.x[i] - ps.x[w];
       const double r = d.norm();
       if (r <= 0.0) continue;
-      const double s = 0.5 * (si + rest_spacing<D>(ps.m[w], ps.rho0[w]));
+      const double s = 0.5 * (si + spacing_of(ps.m[w], ps.rho0[w]));
       if (r - s > max_gap) continue;
       out.push_back({Vec<D>(ps.x[i] - centre), Vec<D>(d / r), r - s, ps.rough[w] != 0});
     }

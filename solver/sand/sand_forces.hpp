@@ -18,6 +18,24 @@ inline double rest_spacing(double m, double rho0) {
   else return std::cbrt(m / rho0);
 }
 
+/// The rest spacing of neighbours (rest_spacing, a cube root in 3-D), remembered for the last mass
+/// and rest density seen: a particle's wall and water neighbours mostly share both. Same bits.
+template <int D>
+class NeighbourSpacing {
+ public:
+  double operator()(double m, double rho0) {
+    if (m != m_ || rho0 != rho0_) {
+      m_ = m;
+      rho0_ = rho0;
+      spacing_ = rest_spacing<D>(m, rho0);
+    }
+    return spacing_;
+  }
+
+ private:
+  double m_ = -1.0, rho0_ = -1.0, spacing_ = 0.0;
+};
+
 /// Pressure that enters friction and yield (eqs 8, 10) [Pa]: the SPH pressure, but at least the
 /// weight of half a particle layer, ρ0 |g| s/2. Summation density is deficient at a free surface, so
 /// the state equation gives p = 0 on the top layer, where a grain physically carries its own weight
