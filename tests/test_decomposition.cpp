@@ -348,16 +348,22 @@ BOOST_AUTO_TEST_CASE(a_file_rank_0_cannot_write_ends_every_rank_with_the_error) 
 BOOST_AUTO_TEST_CASE(bench_over_2_ranks_reports_the_halo_share_and_the_one_process_checksum) {
   if (!have_mpi()) return;
   const std::string root = test::fresh_path("decomposed_bench");
+  fs::create_directories(root);
+  const std::string limits = root + "/probe.json";  // the roofline's limits at the runs' one thread, given rather than measured
+  std::ofstream(limits) << R"({"rows": [{"threads": 1, "bandwidth_bytes_per_s": 2e10, "flops_per_s": 1e10}]})";
   std::vector<json> entries;
   for (const int ranks : {1, 2}) {
     const std::string out = root + "/n" + std::to_string(ranks);
-    const test::ProcessResult r = sandcastle(ranks, {"bench", "--scene", "dam_break_square", "--steps", "20", "--out", out});
+    const test::ProcessResult r =
+        sandcastle(ranks, {"bench", "--scene", "dam_break_square", "--steps", "20", "--limits", limits, "--out", out});
     BOOST_TEST_REQUIRE(r.exit_code == 0);
     entries.push_back(read_json_file(out + "/bench.json").at("scenes").at(0));
   }
   BOOST_TEST(entries[1]["checksum"] == entries[0]["checksum"]);
   BOOST_TEST(entries[1]["ranks"] == 2);
   BOOST_TEST(!entries[0].contains("ranks"));
+  BOOST_TEST(entries[0]["roofline"]["limits"]["bandwidth_bytes_per_s"].get<double>() == 2e10);  // one process only
+  BOOST_TEST(!entries[1].contains("roofline"));
   const double share = entries[1]["halo_share"];
   BOOST_TEST((share > 0.0 && share < 1.0));
   BOOST_TEST(entries[1]["stage_ms_per_step"]["halo"].get<double>() > 0.0);

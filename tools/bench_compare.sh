@@ -14,8 +14,10 @@
 #
 # Both binaries read the scenes from this repository's cases/, so an old binary built from another
 # checkout times the same case files. Each run's bench.json stays in DIR/<scene>/<old|new>_<round>/;
-# DIR/compare.json holds, per scene, both medians, the ratio and whether both binaries ended in the
-# same state (state checksum). Exit code 2 for bad arguments.
+# DIR/compare.json holds, per scene, both medians, the ratio, whether both binaries ended in the
+# same state (state checksum) and, for a binary that reports the roofline, the median fraction of
+# the machine's limit per pair stage (the limits measured once by the new binary's probe, DIR/probe).
+# Exit code 2 for bad arguments.
 set -euo pipefail
 usage() { sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 [ $# -ge 2 ] || usage
@@ -42,14 +44,27 @@ for s in "${scenes[@]}"; do
 done
 mkdir -p "$out"
 
+# The roofline's limits (docs/performance.md), measured once for every run of a binary that reads them.
+if "$new" bench --help 2>/dev/null | grep -q -- '--limits'; then
+  OMP_NUM_THREADS="$threads" "$new" bench --probe --threads "$threads" --out "$out/probe" >"$out/probe.log" 2>&1 \
+    || { echo "bench_compare: the probe failed, see $out/probe.log" >&2; exit 1; }
+fi
+limits_of() {  # the --limits arguments for binary $1, if it takes them
+  if [ -f "$out/probe/probe.json" ] && "$1" bench --help 2>/dev/null | grep -q -- '--limits'; then
+    echo "--limits" "$out/probe/probe.json"
+  fi
+}
+old_limits=($(limits_of "$old")); new_limits=($(limits_of "$new"))
+
 for s in "${scenes[@]}"; do
   mkdir -p "$out/$s"
   for r in $(seq 1 "$rounds"); do
     for which in old new; do
-      bin="$old"; [ "$which" = new ] && bin="$new"
+      bin="$old"; limits=("${old_limits[@]}")
+      [ "$which" = new ] && { bin="$new"; limits=("${new_limits[@]}"); }
       dir="$out/$s/${which}_$r"
       echo "bench_compare: $s round $r/$rounds $which" >&2
-      OMP_NUM_THREADS="$threads" "$bin" bench --scene "$s" --threads "$threads" "${steps[@]}" \
+      OMP_NUM_THREADS="$threads" "$bin" bench --scene "$s" --threads "$threads" "${steps[@]}" "${limits[@]}" \
         --cases-dir "$repo/cases" --out "$dir" >"$dir.log" 2>&1 || { echo "bench_compare: $which failed on $s, see $dir.log" >&2; exit 1; }
     done
   done
@@ -64,9 +79,14 @@ for s in scenes:
     med = {w: statistics.median(r["ms_per_step"]["median"] for r in runs[w]) for w in runs}
     same = len({r["checksum"] for r in runs["old"] + runs["new"]}) == 1
     stages = {w: {k: statistics.median(r["stage_ms_per_step"][k] for r in runs[w]) for k in runs[w][0]["stage_ms_per_step"]} for w in runs}
-    rows.append({"scene": s, "particles": runs["new"][0]["particles"]["total"], "rounds": len(runs["new"]),
-                 "old_ms_per_step": med["old"], "new_ms_per_step": med["new"], "speedup": med["old"] / med["new"],
-                 "same_state": same, "old_stage_ms_per_step": stages["old"], "new_stage_ms_per_step": stages["new"]})
+    row = {"scene": s, "particles": runs["new"][0]["particles"]["total"], "rounds": len(runs["new"]),
+           "old_ms_per_step": med["old"], "new_ms_per_step": med["new"], "speedup": med["old"] / med["new"],
+           "same_state": same, "old_stage_ms_per_step": stages["old"], "new_stage_ms_per_step": stages["new"]}
+    for w in runs:  # the median fraction of the limit per pair stage, where the binary reports a roofline
+        if all("roofline" in r for r in runs[w]):
+            row[f"{w}_fraction_of_limit"] = {k: statistics.median(r["roofline"]["stages"][k].get("fraction_of_limit", 0.0) for r in runs[w])
+                                             for k in runs[w][0]["roofline"]["stages"]}
+    rows.append(row)
 (out / "compare.json").write_text(json.dumps({"old": old, "new": new, "threads": threads, "scenes": rows}, indent=1) + "\n")
 print(f"{'scene':26s} {'particles':>9s} {'old ms':>9s} {'new ms':>9s} {'speed-up':>8s}  same state")
 for r in rows:

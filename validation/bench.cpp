@@ -19,6 +19,7 @@
 #include "simulator/sph_probe.hpp"
 #include "probe.hpp"
 #include "progress.hpp"
+#include "roofline.hpp"
 #include "runner.hpp"
 #include "surface_bench.hpp"
 
@@ -104,10 +105,26 @@ void add_decomposition(json& entry, const std::optional<DecompositionAccount>& a
                             {"halo_particles_per_step", static_cast<double>(a->halo_particles) / static_cast<double>(a->steps)}};
 }
 
+/// The neighbour-list entries of an SPH run's last step by the phase of the list's particle.
+template <int D>
+ListEntries list_entries(const Method<D>& sim) {
+  const SphProbe<D> probe = require_sph(sim, "the roofline");
+  const ParticleSet<D>& ps = probe.particles();
+  const NeighbourGrid<D>& nb = probe.neighbours();
+  ListEntries e;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const auto n = static_cast<double>(nb.of(i).size());
+    const Phase phase = ps.phase_of(i);
+    (phase == Phase::Water ? e.water : phase == Phase::Sand ? e.sand : e.boundary) += n;
+  }
+  return e;
+}
+
 /// Runs `steps` steps of one scene, timing each, and returns its bench.json entry; `decompose`:
 /// the scene decomposed over the MPI ranks (every rank runs it; rank 0's times are reported).
+/// `entries`: set to the last step's neighbour-list entries for an SPH scene in one process.
 template <int D>
-json bench_scene(const CaseSpec& spec, double dx, long steps, bool decompose) {
+json bench_scene(const CaseSpec& spec, double dx, long steps, bool decompose, std::optional<ListEntries>& entries) {
   const bool peak_known = restart_peak_resident();
   const double resident_before = status_bytes("VmRSS");  // code, libraries, what earlier scenes left
   const std::unique_ptr<Method<D>> method = make_method<D>(spec, dx, decompose);
@@ -150,6 +167,7 @@ json bench_scene(const CaseSpec& spec, double dx, long steps, bool decompose) {
   if (decompose) add_decomposition(entry, require_sph(sim, "the decomposition's account").decomposition());
   entry["checksum"] = sim.checksum();
   entry["final_particles"] = count_phases(sim.particles());
+  if (spec.method == "sph" && !decompose) entries = list_entries(sim);
   if (peak_known) {
     const double peak = status_bytes("VmHWM"), particles = entry["particles"]["total"].get<double>();
     entry["peak_resident_bytes"] = peak;
@@ -160,10 +178,11 @@ json bench_scene(const CaseSpec& spec, double dx, long steps, bool decompose) {
   return entry;
 }
 
-json bench_any(const CaseSpec& spec, double dx, long steps, bool decompose = false) {
+json bench_any(const CaseSpec& spec, double dx, long steps, bool decompose, std::optional<ListEntries>& entries) {
   check_method(spec);
   if (decompose) check_decomposable(spec);
-  return spec.dimension == 2 ? bench_scene<2>(spec, dx, steps, decompose) : bench_scene<3>(spec, dx, steps, decompose);
+  return spec.dimension == 2 ? bench_scene<2>(spec, dx, steps, decompose, entries)
+                             : bench_scene<3>(spec, dx, steps, decompose, entries);
 }
 
 /// What adaptivity buys: the same scene without its "adaptive" section, timed over the same
@@ -172,7 +191,8 @@ void add_uniform_comparison(const CaseSpec& spec, double dx, long steps, json& e
   CaseSpec uniform = spec;
   uniform.adaptive.reset();
   uniform.name = spec.name + " (uniform)";
-  const json u = bench_any(uniform, dx, steps);
+  std::optional<ListEntries> unused;
+  const json u = bench_any(uniform, dx, steps, false, unused);
   entry["uniform"] = u;
   entry["adaptive_speedup"] = u["ms_per_step"]["mean"].get<double>() / entry["ms_per_step"]["mean"].get<double>();
   const auto moving = [](const json& e) {
@@ -231,6 +251,18 @@ void print_table(const json& entries) {
                   e["us_per_particle_own_step_per_core"].get<double>());
     else
       std::printf("%-24s %.3f us per particle per step per core\n", "", e["us_per_particle_step_per_core"].get<double>());
+    if (e.contains("roofline")) {
+      std::string line;
+      for (const auto& [name, st] : e["roofline"]["stages"].items()) {
+        if (!st.contains("fraction_of_limit")) continue;
+        char part[160];
+        std::snprintf(part, sizeof part, "  %s %.2f Gpairs/s, %.0f B/particle, %.0f%% of the %s limit;", name.c_str(),
+                      st["pair_evaluations_per_s"].get<double>() / 1e9, st["bytes_per_particle"].get<double>(),
+                      100.0 * st["fraction_of_limit"].get<double>(), st["bound"].get<std::string>().c_str());
+        line += part;
+      }
+      std::printf("%-24s roofline:%s\n", "", line.c_str());
+    }
     if (e.contains("adaptive_speedup"))
       std::printf("%-24s uniform %.1f ms/step (mean) vs adaptive %.1f: %.2fx faster; %.2fx fewer moving particles at the end\n", "",
                   e["uniform"]["ms_per_step"]["mean"].get<double>(), t["mean"].get<double>(), e["adaptive_speedup"].get<double>(),
@@ -262,6 +294,7 @@ int bench(const BenchOptions& opt) {
   if (writer) fs::create_directories(opt.out_dir);
   json entries = json::array();
   int exit_code = kSuccess;
+  std::optional<ProbeRow> limits;  // measured (or read) once, at the first SPH scene
   for (const std::string& name : scenes) {
     const std::string file = cases_dir + "/" + name + "/case.json";
     if (!fs::exists(file)) throw InputError(file, "", "no scene named '" + name + "' (see " + cases_dir + ")");
@@ -270,8 +303,15 @@ int bench(const BenchOptions& opt) {
     check_particle_count(spec, dx, opt.max_particles, "/tiers/full/spacings");
     const long steps = opt.steps > 0 ? opt.steps : (name.rfind("bench_water", 0) == 0 ? 200 : 100);
     try {
-      json entry = bench_any(spec, dx, steps, decompose);
+      std::optional<ListEntries> list;
+      json entry = bench_any(spec, dx, steps, decompose, list);
       entry["threads"] = omp_get_max_threads();
+      if (list) {
+        if (!limits) limits = bench_limits(opt.limits, omp_get_max_threads());
+        entry["roofline"] = roofline(spec.dimension, *list, entry["particles"]["total"].get<double>(),
+                                     entry["stage_ms_per_step"], spec.water.gradient_correction, *limits,
+                                     opt.limits.empty() ? "measured" : opt.limits);
+      }
       add_thesis_comparison(entry);
       add_paper_comparison(entry);
       if (spec.adaptive) add_uniform_comparison(spec, dx, steps, entry);

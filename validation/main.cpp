@@ -207,6 +207,10 @@ int main(int argc, char** argv) {
                   "instead of scenes, measure memory bandwidth (STREAM triad) and double-precision throughput at "
                   "1 .. --threads threads: DIR/probe.json")
       ->excludes("--scene");
+  bench->add_option("--limits", benchopt.limits,
+                    "probe.json (bench --probe) to read the roofline's limits from, at this run's thread count "
+                    "(default: measure them first, a few seconds)")
+      ->check(CLI::ExistingFile);
   bench->add_flag("--surface", benchopt.surface,
                   "instead of scenes, time the surface reconstruction of a 68,921-particle block at a quarter of the "
                   "spacing and on a 250^3 grid: DIR/surface.json")
