@@ -200,7 +200,8 @@ void Simulator<D>::compute_sand_forces() {
                     params_.porous ? params_.porous->stress_scale : 0.0, params_.porous ? params_.porous->pore_stiffness : 0.0);
   refresh_halo(sand_stress_);  // the friction reads the neighbours' stress
   refresh_halo(ps_.rigid);     // the clusters join rigid neighbours
-  add_frictional_forces(ps_, nb_, sand_stress_, params_.water.gradient_correction ? correction_ : MatArray<D>{});
+  const MatArray<D> uncorrected;  // both branches lvalues: the choice binds, it does not copy correction_
+  add_frictional_forces(ps_, nb_, sand_stress_, params_.water.gradient_correction ? correction_ : uncorrected);
 }
 
 template <int D>
