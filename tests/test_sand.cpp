@@ -17,15 +17,11 @@
 #include "sand/sand_forces.hpp"
 #include "sand/strain_rate.hpp"
 #include "sand/yield.hpp"
-#include "porous/capillary.hpp"
 #include "scene/scene_builder.hpp"
 #include "simulator/simulator.hpp"
 #include "sph/density.hpp"
-#include "water/pressure_force.hpp"
-#include "water/viscosity_force.hpp"
 #include "water/water_forces.hpp"
 #include "support/lattice.hpp"
-#include "support/mixed_cloud.hpp"
 
 using namespace sc;
 namespace tt = boost::test_tools;
@@ -134,90 +130,6 @@ std::vector<std::size_t> block_on_floor(ParticleSet<2>& ps, const Vec<2>& v, con
   add_floor(ps, -0.05, 0.15, 0.5 * dx - sand_wall_contact_distance(dx), 2, dx, rough);
   return members;
 }
-
-/// The sand pair loops that run in batches against the plain sum over the neighbour list in list
-/// order, pair by pair: the velocity gradient (eq 9′), the forces on sand (pressure of eq 4
-/// corrected, contact with water and walls, viscosity) and the two porous gradients (eq 22, both
-/// forms, one and two fields).
-template <int D>
-void check_batched_sand_loops(bool uniform) {
-  ParticleSet<D> ps = test::mixed_cloud<D>(uniform ? 31 : 32, uniform);
-  NeighbourGrid<D> nb;
-  nb.rebuild(ps);
-  MatArray<D> L;
-  compute_gradient_corrections(ps, nb, L);
-  SandParams sand;
-  sand.viscosity = 0.3;
-  WaterParams water;
-  water.viscosity = 0.5;
-  const double sound_speed = 20.0, dt = 1e-3;
-  for (auto& f : ps.force) f.setZero();
-  VecArrayOf<D> wall_force;
-  add_sand_forces(ps, nb, sand, water, sound_speed, dt, L, wall_force);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  std::vector<double> A(ps.size()), B(ps.size());
-  std::vector<std::uint8_t> a_part(ps.size()), b_part(ps.size());
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    A[i] = u(rng);
-    B[i] = u(rng);
-    b_part[i] = i % 4 != 3;
-    a_part[i] = b_part[i] && i % 3 != 1;
-  }
-  int checked = 0, contacts = 0;
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    if (ps.phase_of(i) != Phase::Sand) continue;
-    const kernel::Support<D> si(ps.h[i]);
-    const double Vi = ps.volume(i), spacing_i = rest_spacing<D>(ps.m[i], ps.rho0[i]);
-    Mat<D> G = Mat<D>::Zero(), Ma = Mat<D>::Zero(), Mb = Mat<D>::Zero();
-    Vec<D> f = Vec<D>::Zero(), wall = Vec<D>::Zero(), ga = Vec<D>::Zero(), gb = Vec<D>::Zero();
-    for (const auto j : nb.of(i)) {
-      if (j == i) continue;
-      const Vec<D> d = ps.x[i] - ps.x[j];
-      const double r = d.norm(), Vj = ps.volume(j);
-      const kernel::Support<D> sj(ps.h[j]);
-      const Vec<D> dij = d_ij<D>(Vj, d, r, sj);
-      if (ps.phase_of(j) == Phase::Sand) G += (ps.v[j] - ps.v[i]) * dij.transpose();
-      if (b_part[j]) {
-        const Mat<D> moment = dij * (-d).transpose();
-        if (a_part[j]) {
-          ga += (A[j] - A[i]) * dij;
-          Ma += moment;
-        }
-        gb += (B[j] - B[i]) * dij;
-        Mb += moment;
-      }
-      const Vec<D> fp = corrected_pair_term<D>(L[i], L[j], pressure_pair_force<D>(Vi, Vj, ps.p[i], ps.p[j], d, r, si, ps.h[j]));
-      f += fp;
-      if (ps.phase_of(j) == Phase::Sand) {
-        f += viscosity_pair_force<D>(sand.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, si, ps.h[j]);
-        continue;
-      }
-      Vec<D> fc = Vec<D>::Zero();
-      const double s = 0.5 * (spacing_i + rest_spacing<D>(ps.m[j], ps.rho0[j]));
-      if (r < s) {
-        const ContactLaw law = contact_law(ps.m[i], ps.moves(j) ? ps.m[j] : 0.0, s, sound_speed, sand.contact_damping,
-                                           std::tan(sand.friction_angle_deg * pi / 180.0), dt);
-        fc = contact_force<D>(law, d, r, ps.v[i], ps.v[j], s);
-        ++contacts;
-      }
-      f += fc;
-      if (ps.moves(j)) f += viscosity_pair_force<D>(water.viscosity, Vi, Vj, ps.v[i], ps.v[j], r, si, ps.h[j]);
-      else if (ps.rough[j]) wall += fp + fc;
-    }
-    BOOST_TEST((velocity_gradient(ps, nb, i).array() == G.array()).all());
-    BOOST_TEST((ps.force[i].array() == f.array()).all());
-    BOOST_TEST((wall_force[i].array() == wall.array()).all());
-    // Each porous gradient form against the difference sums above (Lenaerts: A_i = 0).
-    const auto [a, b] = porous_gradients(ps, nb, A, a_part, B, b_part, true, i, PorousGradient::Corrected);
-    BOOST_TEST((a.array() == corrected_gradients<D, 1>(Ma, {ga}, PorousGradient::Corrected)[0].array()).all());
-    BOOST_TEST((b.array() == corrected_gradients<D, 1>(Mb, {gb}, PorousGradient::Corrected)[0].array()).all());
-    checked += nb.of(i).size() > NeighbourBatch<D>::kSize;  // lists of several batches
-  }
-  BOOST_TEST(checked > 10);
-  BOOST_TEST(contacts > 10);
-}
-
 
 }  // namespace
 
@@ -854,16 +766,6 @@ BOOST_AUTO_TEST_CASE(rigid_sand_mushroom_stands_on_its_stem_at_the_thesis_step) 
   double fastest = 0.0;
   for (std::size_t i = 0; i < sim.particles().size(); ++i) fastest = std::max(fastest, sim.particles().v[i].norm());
   BOOST_TEST(fastest < 1e-3);
-}
-
-BOOST_AUTO_TEST_CASE(batched_sand_and_porous_pair_loops_match_one_pair_at_a_time) {
-  // The batched loops (sph/neighbour_batch.hpp) give the bits of the pair-by-pair sums in list
-  // order, in 2-D and 3-D, with equal and unequal supports. Exact equality: a term computed in
-  // another order, or one left out or added, changes the bits.
-  for (const bool uniform : {true, false}) {
-    check_batched_sand_loops<2>(uniform);
-    check_batched_sand_loops<3>(uniform);
-  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()

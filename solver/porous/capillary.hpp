@@ -8,7 +8,6 @@
 #include "neighbours/neighbour_grid.hpp"
 #include "porous/porous_params.hpp"
 #include "sph/kernels.hpp"
-#include "sph/neighbour_batch.hpp"
 
 namespace sc {
 
@@ -47,32 +46,23 @@ std::pair<Vec<D>, Vec<D>> porous_gradients(const ParticleSet<D>& ps, const Neigh
   Mat<D> Ma = Mat<D>::Zero(), Mb = Mat<D>::Zero();
   bool shared = true;  // B's sum has had only neighbours of A's so far: its moment matrix is Ma
   const kernel::Support<D> si(ps.h[i]);  // the neighbours' supports are mostly h_i: one lookup
-  // In batches (sph/neighbour_batch.hpp): distances, volumes and the spiky factors W'(r, h_j)/r in
-  // vectorised loops, then the sums pair by pair in list order (the bits of the pair-by-pair loop).
-  for_each_batch<D>(nb.of(i), ps.x[i], ps.x.data(), [&](const NeighbourBatch<D>& b) {
-    constexpr int K = NeighbourBatch<D>::kSize;
-    alignas(32) double hj[K] = {}, Vj[K], factor[K];  // hj zeroed: GCC cannot see that the gather fills what is read
-    b.gather_volumes(ps.m.data(), ps.rho.data(), Vj);
-    spiky_gradient_factors<D>(b, ps.h.data(), si, hj, factor);
-    for (int k = 0; k < b.size; ++k) {
-      const std::size_t j = b.j[k];
-      if (j == i || !b_part[j] || !(with_b || a_part[j])) continue;
-      Vec<D> d;
-      for (int a = 0; a < D; ++a) d[a] = b.d[a][k];
-      const double r = b.r[k];
-      const Vec<D> grad = Vj[k] * (r >= hj[k] || r <= 0.0 ? Vec<D>::Zero() : Vec<D>(factor[k] * d));
-      const Mat<D> moment = grad * (-d).transpose();
-      if (a_part[j]) {
-        ga += (A[j] - Ai) * grad;
-        Ma += moment;
-      }
-      if (!with_b) continue;
-      gb += (B[j] - Bi) * grad;
-      if (shared && !a_part[j]) Mb = Ma;
-      shared = shared && a_part[j];
-      if (!shared) Mb += moment;
+  for (const auto j : nb.of(i)) {
+    if (j == i || !b_part[j] || !(with_b || a_part[j])) continue;
+    const Vec<D> d = ps.x[i] - ps.x[j];
+    const double r = d.norm();
+    const Vec<D> grad = ps.volume(j) * (ps.h[j] == si.h ? kernel::spiky_gradient<D>(d, r, si)
+                                                         : kernel::spiky_gradient<D>(d, r, ps.h[j]));
+    const Mat<D> moment = grad * (-d).transpose();
+    if (a_part[j]) {
+      ga += (A[j] - Ai) * grad;
+      Ma += moment;
     }
-  });
+    if (!with_b) continue;
+    gb += (B[j] - Bi) * grad;
+    if (shared && !a_part[j]) Mb = Ma;
+    shared = shared && a_part[j];
+    if (!shared) Mb += moment;
+  }
   if (!with_b) return {corrected_gradients<D, 1>(Ma, {ga}, form)[0], Vec<D>::Zero()};
   if (shared) {
     const auto [a, b] = corrected_gradients<D, 2>(Ma, {ga, gb}, form);

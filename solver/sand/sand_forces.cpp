@@ -5,7 +5,6 @@
 #include "sand/frictional_stress.hpp"
 #include "sand/strain_rate.hpp"
 #include "sand/yield.hpp"
-#include "sph/neighbour_batch.hpp"
 #include "porous/effective_stress.hpp"
 #include "porous/partial_water_pressure.hpp"
 #include "porous/wet_cohesion.hpp"
@@ -79,43 +78,27 @@ void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandP
     wall_force[i].setZero();
     if (!is_sand(ps.phase[i])) continue;
     const double Vi = ps.volume(i), Pi = ps.p[i], spacing_i = rest_spacing<D>(ps.m[i], ps.rho0[i]);
-    const Vec<D> vi = ps.v[i];
+    const Vec<D> xi = ps.x[i], vi = ps.v[i];
     const kernel::Support<D> si(ps.h[i]);
     NeighbourSpacing<D> spacing_of;
     Vec<D> f = Vec<D>::Zero(), wall = Vec<D>::Zero();
-    // In batches (sph/neighbour_batch.hpp): distances, volumes and, where every support is h_i,
-    // the spiky factors W'/r in vectorised loops; the forces then pair by pair in list order, each
-    // the same operations as pressure_pair_force's (the same bits).
-    for_each_batch<D>(nb.of(i), ps.x[i], ps.x.data(), [&](const NeighbourBatch<D>& b) {
-      constexpr int K = NeighbourBatch<D>::kSize;
-      alignas(32) double hj[K] = {}, Vj[K], factor[K];  // hj zeroed: GCC cannot see that the gather fills what is read
-      b.gather_volumes(ps.m.data(), ps.rho.data(), Vj);
-      const bool uniform = spiky_gradient_factors<D>(b, ps.h.data(), si, hj, factor);
-      for (int k = 0; k < b.size; ++k) {
-        const std::size_t j = b.j[k];
-        if (j == static_cast<std::size_t>(i)) continue;
-        Vec<D> d;
-        for (int a = 0; a < D; ++a) d[a] = b.d[a][k];
-        const double r = b.r[k];
-        Vec<D> fp0;
-        if (uniform) {
-          const Vec<D> grad = r >= si.h || r <= 0.0 ? Vec<D>::Zero() : Vec<D>(factor[k] * d);
-          fp0 = pressure_pair_coefficient(Vi, Vj[k], Pi, ps.p[j], water.mueller_half_pressure) * grad;
-        } else {
-          fp0 = pressure_pair_force<D>(Vi, Vj[k], Pi, ps.p[j], d, r, si, hj[k], water.mueller_half_pressure);
-        }
-        const Vec<D> fp = corrected ? corrected_pair_term<D>(correction[i], correction[j], fp0) : fp0;
-        f += fp;
-        if (is_sand(ps.phase[j])) {
-          if (sand.viscosity > 0.0) f += viscosity_pair_force<D>(sand.viscosity, Vi, Vj[k], vi, ps.v[j], r, si, hj[k]);
-          continue;
-        }
-        const Vec<D> fc = pair_contact_force(ps, i, spacing_i, j, spacing_of(ps.m[j], ps.rho0[j]), d, r, sand, sound_speed, dt);
-        f += fc;
-        if (ps.moves(j)) f += viscosity_pair_force<D>(water.viscosity, Vi, Vj[k], vi, ps.v[j], r, si, hj[k]);
-        else if (ps.rough[j]) wall += fp + fc;
+    for (const auto j : nb.of(i)) {
+      if (j == static_cast<std::size_t>(i)) continue;
+      const Vec<D> d = xi - ps.x[j];
+      const double r = d.norm();
+      const double Vj = ps.volume(j);
+      const Vec<D> fp0 = pressure_pair_force<D>(Vi, Vj, Pi, ps.p[j], d, r, si, ps.h[j], water.mueller_half_pressure);
+      const Vec<D> fp = corrected ? corrected_pair_term<D>(correction[i], correction[j], fp0) : fp0;
+      f += fp;
+      if (is_sand(ps.phase[j])) {
+        if (sand.viscosity > 0.0) f += viscosity_pair_force<D>(sand.viscosity, Vi, Vj, vi, ps.v[j], r, si, ps.h[j]);
+        continue;
       }
-    });
+      const Vec<D> fc = pair_contact_force(ps, i, spacing_i, j, spacing_of(ps.m[j], ps.rho0[j]), d, r, sand, sound_speed, dt);
+      f += fc;
+      if (ps.moves(j)) f += viscosity_pair_force<D>(water.viscosity, Vi, Vj, vi, ps.v[j], r, si, ps.h[j]);
+      else if (ps.rough[j]) wall += fp + fc;
+    }
     ps.force[i] += f;
     wall_force[i] = wall;
   }

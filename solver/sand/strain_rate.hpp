@@ -4,7 +4,6 @@
 #include "sand/rigid_body.hpp"
 #include "neighbours/neighbour_grid.hpp"
 #include "sph/kernels.hpp"
-#include "sph/neighbour_batch.hpp"
 
 namespace sc {
 
@@ -28,24 +27,13 @@ Mat<D> velocity_gradient(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, s
                          const VecArrayOf<D>* velocities = nullptr) {
   const VecArrayOf<D>& v = velocities ? *velocities : ps.v;
   Mat<D> G = Mat<D>::Zero();
-  const Vec<D> vi = v[i];
+  const Vec<D> xi = ps.x[i], vi = v[i];
   const kernel::Support<D> si(ps.h[i]);
-  // In batches (sph/neighbour_batch.hpp): the factors W'(r, h_j)/r of a batch in one vectorised
-  // loop, then the terms in list order. A pair outside the support gets the factor 0 and adds ±0
-  // to G, which starts at +0 and so is never −0: the bits of the pair-by-pair sum.
-  for_each_batch<D>(nb.of(i), ps.x[i], ps.x.data(), [&](const NeighbourBatch<D>& b) {
-    constexpr int K = NeighbourBatch<D>::kSize;
-    alignas(32) double hj[K] = {}, factor[K];  // hj zeroed: GCC cannot see that the gather fills what is read
-    spiky_gradient_factors<D>(b, ps.h.data(), si, hj, factor);
-    for (int k = 0; k < b.size; ++k) {
-      const std::size_t j = b.j[k];
-      if (j == i || ps.phase_of(j) != Phase::Sand) continue;
-      const double Vj = ps.volume(j);
-      Vec<D> dij;  // d_ij of eq 20: V_j (W'/r) d
-      for (int a = 0; a < D; ++a) dij[a] = Vj * (factor[k] * b.d[a][k]);
-      G += (v[j] - vi) * dij.transpose();
-    }
-  });
+  for (const auto j : nb.of(i)) {
+    if (j == i || ps.phase_of(j) != Phase::Sand) continue;
+    const Vec<D> d = xi - ps.x[j];
+    G += (v[j] - vi) * d_ij<D>(ps.volume(j), d, d.norm(), kernel::support_of<D>(ps.h[j], si)).transpose();
+  }
   return G;
 }
 

@@ -19,7 +19,6 @@
 #include <span>
 
 #include "core/types.hpp"
-#include "sph/kernels.hpp"
 
 namespace sc {
 
@@ -35,10 +34,6 @@ struct NeighbourBatch {
   template <class T>
   void gather(const T* field, T* out) const {
     for (int k = 0; k < size; ++k) out[k] = field[j[k]];
-  }
-  /// V_j = m_j / ρ_j of each entry into out[0 .. size).
-  void gather_volumes(const double* m, const double* rho, double* out) const {
-    for (int k = 0; k < size; ++k) out[k] = m[j[k]] / rho[j[k]];
   }
   /// Whether every value of values[0 .. size) equals v (e.g. all supports equal h_i).
   bool all_equal(const double* values, double v) const {
@@ -63,21 +58,6 @@ void for_each_batch(std::span<const std::uint32_t> list, const Vec<D>& xi, const
     }
     batch_fn(b);
   }
-}
-
-/// The spiky factors W'(r, h_j)/r of a batch (0 outside the support: kernel::spiky_gradient_factor)
-/// into factor[0 .. size), with the neighbours' supports gathered into hj: one vectorised loop when
-/// every h_j is h_i (`si`), a support per entry otherwise. Returns whether every h_j is h_i.
-template <int D>
-bool spiky_gradient_factors(const NeighbourBatch<D>& b, const double* h, const kernel::Support<D>& si, double* hj,
-                            double* factor) {
-  b.gather(h, hj);
-  if (b.all_equal(hj, si.h)) {
-    for (int k = 0; k < b.size; ++k) factor[k] = kernel::spiky_gradient_factor<D>(b.r[k], si);
-    return true;
-  }
-  for (int k = 0; k < b.size; ++k) factor[k] = kernel::spiky_gradient_factor<D>(b.r[k], kernel::support_of<D>(hj[k], si));
-  return false;
 }
 
 }  // namespace sc
