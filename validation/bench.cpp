@@ -291,10 +291,13 @@ int bench(const BenchOptions& opt) {
   }
   const std::string cases_dir = opt.cases_dir.empty() ? data_path("cases") : opt.cases_dir;
   const std::vector<std::string>& scenes = opt.scenes.empty() ? default_scenes : opt.scenes;
+  // The roofline's limits: a --limits file is read before any scene runs or anything is written
+  // (bad input: exit 2); without one they are measured once, at the first SPH scene.
+  std::optional<ProbeRow> limits;
+  if (!opt.limits.empty()) limits = bench_limits(opt.limits, omp_get_max_threads());
   if (writer) fs::create_directories(opt.out_dir);
   json entries = json::array();
   int exit_code = kSuccess;
-  std::optional<ProbeRow> limits;  // measured (or read) once, at the first SPH scene
   for (const std::string& name : scenes) {
     const std::string file = cases_dir + "/" + name + "/case.json";
     if (!fs::exists(file)) throw InputError(file, "", "no scene named '" + name + "' (see " + cases_dir + ")");

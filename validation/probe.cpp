@@ -70,10 +70,12 @@ double multiply_add_chains(long iterations, int chains, double x0, double m, dou
   return sum;
 }
 
+ProbeRow probe_row(int threads) { return {threads, triad_bandwidth(threads), chain_flops(threads)}; }
+
 std::vector<ProbeRow> run_probe(int max_threads) {
   const int top = max_threads > 0 ? max_threads : omp_get_max_threads();
   std::vector<ProbeRow> rows;
-  for (int t = 1; t <= top; ++t) rows.push_back({t, triad_bandwidth(t), chain_flops(t)});
+  for (int t = 1; t <= top; ++t) rows.push_back(probe_row(t));
   omp_set_num_threads(top);
   return rows;
 }

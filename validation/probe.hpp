@@ -28,6 +28,9 @@ struct ProbeRow {
   double flops = 0.0;      ///< [flop/s] multiply-add chains
 };
 
+/// The probe at `threads` threads (OpenMP's thread count is left at `threads`).
+ProbeRow probe_row(int threads);
+
 /// The probe at 1 .. max_threads threads (0: OpenMP's default maximum).
 std::vector<ProbeRow> run_probe(int max_threads);
 

@@ -54,7 +54,7 @@ std::vector<Pass> passes(int d, const ListEntries& e, bool corrected) {
 }  // namespace
 
 ProbeRow bench_limits(const std::string& file, int threads) {
-  if (file.empty()) return run_probe(threads).back();
+  if (file.empty()) return probe_row(threads);
   const json doc = read_json_file(file);
   if (!doc.is_object() || !doc.contains("rows") || !doc["rows"].is_array())
     throw InputError(file, "/rows", "must be an array of the probe's rows (sandcastle bench --probe)");

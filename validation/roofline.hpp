@@ -19,7 +19,7 @@ struct ListEntries {
 };
 
 /// The limits a bench run is read against: the probe's row at the run's thread count, from
-/// probe.json (`file`) or measured now (file empty). A probe.json without that row, or not a probe
+/// probe.json (`file`) or measured now at that thread count only (file empty). A probe.json without that row, or not a probe
 /// document, is bad input (InputError naming the file and the JSON path).
 ProbeRow bench_limits(const std::string& file, int threads);
 
