@@ -40,15 +40,16 @@ ParticleSet<D> random_body(int n, const Vec<D>& sides, unsigned seed) {
 
 template <int D>
 Clusters one_cluster(const ParticleSet<D>& ps) {
-  Clusters c(1, std::vector<std::size_t>(ps.size()));
-  std::iota(c[0].begin(), c[0].end(), 0);
-  return c;
+  std::vector<std::size_t> members(ps.size());
+  std::iota(members.begin(), members.end(), 0);
+  return Clusters(members);
 }
 
 /// Sets the members' velocities to the rigid motion v_cm + ω × (x − r_cm).
 template <int D>
 void set_rigid_velocity(ParticleSet<D>& ps, const Vec<D>& v_cm, const AngVec<D>& omega) {
-  const auto members = one_cluster(ps)[0];
+  const Clusters one = one_cluster(ps);
+  const auto members = one[0];
   const Vec<D> centre = mass_and_centre<D>(members, ps.m, ps.x).second;
   for (const auto i : members) ps.v[i] = v_cm + spin_velocity<D>(omega, ps.x[i] - centre);
 }
@@ -62,7 +63,8 @@ void step(ParticleSet<D>& ps, const Clusters& clusters, double dt) {
 /// The motion of the members as they are (no force, no step): M, r_cm, P, L, I and ω = I⁻¹L.
 template <int D>
 ClusterMotion<D> state(const ParticleSet<D>& ps) {
-  const auto members = one_cluster(ps)[0];
+  const Clusters one = one_cluster(ps);
+  const auto members = one[0];
   const VecArrayOf<D> no_force(ps.size(), Vec<D>::Zero());
   return rigid_motion<D>(members, ps.m, ps.x, ps.v, no_force, 0.0);
 }
@@ -88,7 +90,8 @@ double largest_distance_change(const VecArrayOf<D>& a, const VecArrayOf<D>& b) {
 /// The rotation A that carries the offsets from the centre of `start` to those of `now`
 /// (least squares; exact for a rigid motion): A = (Σ r rₒᵀ)(Σ rₒ rₒᵀ)⁻¹.
 Mat<3> attitude(const ParticleSet<3>& start, const ParticleSet<3>& now) {
-  const auto members = one_cluster(start)[0];
+  const Clusters one = one_cluster(start);
+  const auto members = one[0];
   const Vec<3> c0 = mass_and_centre<3>(members, start.m, start.x).second;
   const Vec<3> c = mass_and_centre<3>(members, now.m, now.x).second;
   Mat<3> cross = Mat<3>::Zero(), gram = Mat<3>::Zero();

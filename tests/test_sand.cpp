@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <boost/test/unit_test.hpp>
 #include <numeric>
+#include <omp.h>
 #include <random>
 
 #include "sand/clusters.hpp"
@@ -590,7 +591,8 @@ BOOST_AUTO_TEST_CASE(clusters_by_breadth_first_search_in_stable_order) {
   ps.rigid[10] = 0;
   NeighbourGrid<2> nb;
   nb.rebuild(ps);
-  const Clusters clusters = find_clusters(ps, nb);
+  Clusters clusters;
+  find_clusters(ps, nb, clusters);
   BOOST_TEST(clusters.size() == 2u);
   BOOST_TEST(clusters[0].front() == 0u);
   BOOST_TEST(clusters[0].size() + clusters[1].size() == ps.size() - 1);
@@ -608,7 +610,8 @@ BOOST_AUTO_TEST_CASE(clusters_by_breadth_first_search_in_stable_order) {
     rigid += arch.rigid[i];
   }
   nb.rebuild(arch);
-  const Clusters one = find_clusters(arch, nb);
+  Clusters one;
+  find_clusters(arch, nb, one);
   BOOST_TEST_REQUIRE(one.size() == 1u);
   BOOST_TEST(one[0].size() == rigid);
   BOOST_TEST(one[0].front() == 0u);
@@ -680,6 +683,55 @@ BOOST_AUTO_TEST_CASE(wall_contact_sweeps_stop_when_the_motion_has_converged) {
       BOOST_TEST(motion_gap(stopped, converged) < 1e-9 * g * dt);
     }
   }
+}
+
+BOOST_AUTO_TEST_CASE(wall_contacts_of_many_large_clusters_are_the_same_at_1_and_2_threads) {
+  // constrain_clusters_by_walls over two large rigid blocks (50 x 45 grains, above the size whose
+  // contacts are gathered in chunks) and three small ones, landing on a rough floor at different
+  // velocities: each cluster's motion is bitwise that of resolve_wall_contacts on its own contacts
+  // (cluster_wall_contacts within wall_contact_reach, in member and list order), at 1 and at 2
+  // threads, and again when the same buffers serve a second call.
+  const double dt = 1e-3, dx = 0.01, mu = 0.7;
+  ParticleSet<2> ps;
+  const Vec<2> g(0.0, -9.81);
+  double x0 = 0.0;
+  int block = 0;
+  for (const int width : {50, 5, 50, 4, 6}) {
+    const Vec<2> v(0.3 * (block % 3) - 0.2, -0.1 - 0.2 * block);
+    const double height = width > 10 ? 0.45 : 0.05;
+    add_sand_block<2>(ps, Vec<2>(x0, 0.0), Vec<2>(x0 + width * dx, height), dx, v, g);
+    x0 += (width + 5) * dx;
+    ++block;
+  }
+  add_floor<2>(ps, -0.05, x0, 0.5 * dx - sand_wall_contact_distance(dx), 2, dx, true);
+  for (std::size_t i = 0; i < ps.size(); ++i) ps.rigid[i] = ps.phase_of(i) == Phase::Sand;
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  Clusters clusters;
+  find_clusters(ps, nb, clusters);
+  BOOST_TEST_REQUIRE(clusters.size() == 5u);
+  const std::vector<ClusterMotion<2>> free = cluster_motions<2>(ps, clusters, dt);
+  std::vector<ClusterMotion<2>> expected = free;
+  for (std::size_t c = 0; c < clusters.size(); ++c) {
+    const double reach = wall_contact_reach<2>(ps, clusters[c], free[c], dt);
+    const auto contacts = cluster_wall_contacts<2>(ps, nb, clusters[c], free[c].centre, reach);
+    BOOST_TEST_REQUIRE(!contacts.empty());
+    resolve_wall_contacts<2>(expected[c], contacts, clusters[c].size() > 1, dt, mu);
+  }
+  const int threads = omp_get_max_threads();
+  WallContactBuffers<2> buffers;
+  for (const int t : {1, 2, 2}) {
+    omp_set_num_threads(t);
+    std::vector<ClusterMotion<2>> motions = free;
+    constrain_clusters_by_walls<2>(ps, nb, clusters, motions, dt, mu, buffers);
+    for (std::size_t c = 0; c < clusters.size(); ++c) {
+      BOOST_TEST((motions[c].velocity.array() == expected[c].velocity.array()).all());
+      BOOST_TEST((motions[c].omega.array() == expected[c].omega.array()).all());
+      BOOST_TEST((motions[c].momentum.array() == expected[c].momentum.array()).all());
+      BOOST_TEST(motions[c].velocity[1] > free[c].velocity[1]);  // the floor stopped the landing
+    }
+  }
+  omp_set_num_threads(threads);
 }
 
 BOOST_AUTO_TEST_CASE(rigid_block_landing_on_a_floor_obeys_coulomb_at_the_contact) {

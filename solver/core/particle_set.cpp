@@ -64,12 +64,13 @@ void ParticleSet<D>::queue_remove(std::size_t i) {
 
 template <int D>
 ParticleSet<D>& ParticleSet<D>::additions() {
-  if (additions_.empty()) {
-    additions_.emplace_back();
-    additions_.front().next_id_ = next_id_;
-    if (porous_fields_) additions_.front().add_porous_fields();
+  if (additions_.empty()) additions_.emplace_back();
+  ParticleSet& add = additions_.front();
+  if (add.size() == 0) {  // a new queue (the set is kept empty between compactions, with its storage)
+    add.next_id_ = next_id_;
+    if (porous_fields_) add.add_porous_fields();
   }
-  return additions_.front();
+  return add;
 }
 
 template <int D>
@@ -87,8 +88,8 @@ template <int D>
 bool ParticleSet<D>::compact() {
   bool changed = false;
   if (remove_flag_.size() == size()) {
-    std::vector<std::size_t> keep;
-    keep.reserve(size());
+    thread_local std::vector<std::size_t> keep;  // kept between calls, as permute's scratch
+    keep.clear();
     for (std::size_t i = 0; i < size(); ++i)
       if (!remove_flag_[i]) keep.push_back(i);
     if (keep.size() != size()) {
@@ -102,7 +103,7 @@ bool ParticleSet<D>::compact() {
     ParticleSet& add = additions_.front();
     visit_fields_with(add, [](auto& field, const auto& src) { field.insert(field.end(), src.begin(), src.end()); });
     next_id_ = add.next_id_;
-    additions_.clear();
+    add.truncate(0);
     appended(before);
     changed = true;
   }
@@ -184,7 +185,8 @@ void ParticleSet<D>::refresh_from(const ParticleSet& other) {
     const auto threads = static_cast<std::size_t>(omp_get_num_threads());
     const auto t = static_cast<std::size_t>(omp_get_thread_num());
     const std::size_t lo = n * t / threads, hi = n * (t + 1) / threads;
-    std::vector<std::pair<std::size_t, std::size_t>> runs;
+    thread_local std::vector<std::pair<std::size_t, std::size_t>> runs;  // kept between calls
+    runs.clear();
     for (std::size_t k = lo; k < hi;) {
       const auto full = [&](std::size_t i) { return !(inert(i) && other.inert(i)); };
       if (!full(k)) {

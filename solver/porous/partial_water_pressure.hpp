@@ -78,10 +78,16 @@ double own_pressure_weight(const ParticleSet<D>& ps, std::size_t i, double m0) {
 /// particles are kept aside until all are computed).
 template <int D>
 void set_partial_water_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, double m0) {
-  std::vector<std::size_t> lighter;  // the water particles lighter than a full one, in index order
+  // Buffers kept by the calling thread between steps; the parallel loop reaches them through the
+  // references (a thread_local named in the loop would be each thread's own).
+  thread_local std::vector<std::size_t> lighter_buffer;
+  thread_local std::vector<double> mixed_buffer;
+  std::vector<std::size_t>& lighter = lighter_buffer;  // the water particles lighter than a full one, in index order
+  std::vector<double>& mixed = mixed_buffer;
+  lighter.clear();
   for (std::size_t i = 0; i < ps.size(); ++i)
     if (ps.phase_of(i) == Phase::Water && own_pressure_weight(ps, i, m0) < 1.0) lighter.push_back(i);
-  std::vector<double> mixed(lighter.size());
+  mixed.resize(lighter.size());
   const auto n = static_cast<std::int64_t>(lighter.size());
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::int64_t k = 0; k < n; ++k) {

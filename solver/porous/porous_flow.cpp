@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
 
 #include "porous/capillary.hpp"
@@ -493,34 +492,54 @@ struct SmallWater {
   std::uint64_t first, count;
 };
 
+/// The buffers of absorb_small, kept by the thread between steps (no allocation in a step that
+/// needs no more room than an earlier one).
+template <int D>
+struct SmallWaterBuffers {
+  std::vector<SmallWater<D>> small;
+  std::vector<Receiver<D>> receivers;
+  std::vector<Receiver<D>> state;    // the receivers, each once, by place
+  std::vector<std::size_t> mine;     // index of each of small (this rank's)
+  std::vector<std::size_t> order;    // small by place
+  std::vector<std::uint8_t> absorbed;  // by candidate
+};
+
+/// The receiver at place `at` among `state` (sorted by place, each once).
+template <int D>
+Receiver<D>& receiver_at(std::vector<Receiver<D>>& state, std::uint64_t at) {
+  return *std::lower_bound(state.begin(), state.end(), at, [](const Receiver<D>& r, std::uint64_t a) { return r.at < a; });
+}
+
 /// Decides absorb_small in the one-process order (by place): each small water particle gives its
 /// rest to the receiver with the most room as the earlier absorptions left it (the first in list
-/// order among equals), if that has room for it. Returns the receivers' states after it, by
-/// place, and marks the absorbed particles (`absorbed`, by candidate).
+/// order among equals), if that has room for it. Leaves the receivers' states after it in
+/// b.state (by place, each receiver once: its copies in several lists carry the same values) and
+/// marks the absorbed particles in b.absorbed (by candidate).
 template <int D>
-std::map<std::uint64_t, Receiver<D>> replay_absorption(const std::vector<SmallWater<D>>& small, const std::vector<Receiver<D>>& receivers,
-                                                       std::vector<std::uint8_t>& absorbed) {
-  std::map<std::uint64_t, Receiver<D>> state;
-  for (const Receiver<D>& r : receivers) state.emplace(r.at, r);
-  std::vector<std::size_t> order(small.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return small[a].at < small[b].at; });
-  absorbed.assign(small.size(), 0);
-  for (const std::size_t c : order) {
-    const SmallWater<D>& i = small[c];
+void replay_absorption(SmallWaterBuffers<D>& b) {
+  const auto by_place = [](const auto& x, const auto& y) { return x.at < y.at; };
+  b.state.assign(b.receivers.begin(), b.receivers.end());
+  std::sort(b.state.begin(), b.state.end(), by_place);
+  b.state.erase(std::unique(b.state.begin(), b.state.end(), [](const auto& x, const auto& y) { return x.at == y.at; }),
+                b.state.end());
+  b.order.resize(b.small.size());
+  std::iota(b.order.begin(), b.order.end(), std::size_t{0});
+  std::sort(b.order.begin(), b.order.end(), [&](std::size_t x, std::size_t y) { return b.small[x].at < b.small[y].at; });
+  b.absorbed.assign(b.small.size(), 0);
+  for (const std::size_t c : b.order) {
+    const SmallWater<D>& i = b.small[c];
     Receiver<D>* best = nullptr;
     double best_room = -1.0;
     for (std::uint64_t k = i.first; k < i.first + i.count; ++k) {
-      Receiver<D>& r = state.at(receivers[k].at);
+      Receiver<D>& r = receiver_at(b.state, b.receivers[k].at);
       const double room = r.capacity - r.absorbed;
       if (room > best_room) { best = &r; best_room = room; }
     }
     if (!best || best_room < i.m) continue;
     if (best->held) receive(best->m, best->v, i.m, i.v);
     best->absorbed += i.m;
-    absorbed[c] = 1;
+    b.absorbed[c] = 1;
   }
-  return state;
 }
 
 /// Deletes water particles that are (nearly) empty, giving their rest, with its momentum, to the
@@ -531,44 +550,46 @@ std::map<std::uint64_t, Receiver<D>> replay_absorption(const std::vector<SmallWa
 template <int D>
 std::size_t absorb_small(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const PorousWork<D>& w,
                          const Decomposition<D>* ranks) {
-  std::vector<SmallWater<D>> small;
-  std::vector<Receiver<D>> receivers;
-  std::vector<std::size_t> mine;  // index of each of small (this rank's)
+  thread_local SmallWaterBuffers<D> b;
+  b.small.clear();
+  b.receivers.clear();
+  b.mine.clear();
   for (std::size_t i = 0; i < ps.size(); ++i) {
     if (!own(ranks, i) || !w.part[i] || w.porous[i] || ps.m[i] >= p.min_water_fraction * full_mass_at_level(ps, i, p.water_mass))
       continue;
-    SmallWater<D> c{place(ranks, i), ps.m[i], ps.v[i], receivers.size(), 0};
+    SmallWater<D> c{place(ranks, i), ps.m[i], ps.v[i], b.receivers.size(), 0};
     for (const auto j : nb.of(i))
-      if (w.porous[j]) receivers.push_back({place(ranks, j), w.slot[j].capacity, ps.absorbed[j], ps.m[j], ps.v[j], carries_held_water(ps, j)});
-    c.count = receivers.size() - c.first;
-    small.push_back(c);
-    mine.push_back(i);
+      if (w.porous[j]) b.receivers.push_back({place(ranks, j), w.slot[j].capacity, ps.absorbed[j], ps.m[j], ps.v[j], carries_held_water(ps, j)});
+    c.count = b.receivers.size() - c.first;
+    b.small.push_back(c);
+    b.mine.push_back(i);
   }
-  const std::size_t local = small.size();
+  const std::size_t local = b.small.size();
   if (ranks) {
     // Each rank's candidates point into its own receivers: renumbered in the gathered order.
-    small = ranks->all_gather_plain(small);
-    receivers = ranks->all_gather_plain(receivers);
+    b.small = ranks->all_gather_plain(b.small);
+    b.receivers = ranks->all_gather_plain(b.receivers);
     std::uint64_t first = 0;
-    for (SmallWater<D>& c : small) {
+    for (SmallWater<D>& c : b.small) {
       c.first = first;
       first += c.count;
     }
   }
-  std::vector<std::uint8_t> absorbed;
-  const std::map<std::uint64_t, Receiver<D>> state = replay_absorption(small, receivers, absorbed);
-  for (std::size_t i = 0; i < ps.size(); ++i) {
-    const auto it = state.find(place(ranks, i));
-    if (it == state.end()) continue;
-    ps.absorbed[i] = it->second.absorbed;
-    ps.m[i] = it->second.m;
-    ps.v[i] = it->second.v;
-  }
+  replay_absorption(b);
+  if (!b.state.empty())
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      const auto it = std::lower_bound(b.state.begin(), b.state.end(), place(ranks, i),
+                                       [](const Receiver<D>& r, std::uint64_t a) { return r.at < a; });
+      if (it == b.state.end() || it->at != place(ranks, i)) continue;
+      ps.absorbed[i] = it->absorbed;
+      ps.m[i] = it->m;
+      ps.v[i] = it->v;
+    }
   std::size_t count = 0;
   for (std::size_t k = 0; k < local; ++k) {
-    const std::size_t i = mine[k];
-    const auto c = std::find_if(small.begin(), small.end(), [&](const SmallWater<D>& s) { return s.at == place(ranks, i); });
-    if (!absorbed[static_cast<std::size_t>(c - small.begin())]) continue;
+    const std::size_t i = b.mine[k];
+    const auto c = std::find_if(b.small.begin(), b.small.end(), [&](const SmallWater<D>& s) { return s.at == place(ranks, i); });
+    if (!b.absorbed[static_cast<std::size_t>(c - b.small.begin())]) continue;
     ps.m[i] = 0.0;
     ps.queue_remove(i);
     ++count;

@@ -14,51 +14,30 @@ constexpr std::size_t kMembersPerChunk = 512;
 }  // namespace
 
 template <int D>
-Clusters find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb) {
-  // -1 marks the particles that never join (all but rigid sand), in parallel, so the serial
-  // search below reads one field per neighbour; they get 0 (no cluster) back at the end.
+void find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, Clusters& clusters) {
+  // -1 marks the particles that never join (all but rigid sand); they get 0 (no cluster) back at the end.
   constexpr std::int32_t kNever = -1;
   const auto n = static_cast<std::int64_t>(ps.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) ps.cluster[i] = ps.phase_of(i) == Phase::Sand && ps.rigid[i] ? 0 : kNever;
-  auto joins = [&](std::size_t i) { return ps.cluster[i] == 0; };
-  Clusters clusters;
-  for (std::size_t seed = 0; seed < ps.size(); ++seed) {
-    if (!joins(seed)) continue;
-    const auto number = static_cast<std::int32_t>(clusters.size() + 1);
-    ps.cluster[seed] = number;
-    std::vector<std::size_t>& members = clusters.emplace_back(1, seed);  // also the breadth-first queue
-    for (std::size_t k = 0; k < members.size(); ++k) {
-      const std::size_t i = members[k];
-      for (const auto j : nb.of(i))
-        if (joins(j)) {
-          ps.cluster[j] = number;
-          members.push_back(j);
-        }
-    }
-  }
+  clusters.search(ps.size(), std::span(ps.cluster), [&](std::size_t i) { return nb.of(i); });
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) ps.cluster[i] = std::max(ps.cluster[i], 0);
-  return clusters;
 }
 
 template <int D>
-std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt,
-                                              InertiaForm form) {
-  // The members of every cluster in fixed chunks (the same at any number of threads), summed chunk
-  // by chunk in parallel and added in chunk order, so a large cluster is shared among the threads.
-  struct Chunk {
-    std::size_t cluster, first;
-  };
-  std::vector<Chunk> chunks;
-  std::vector<std::size_t> first_chunk(clusters.size() + 1);
+void cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt, InertiaForm form,
+                     std::vector<ClusterMotion<D>>& motions, ClusterBuffers<D>& buffers) {
+  auto& [chunks, first_chunk, moments, sums, turns] = buffers;
+  chunks.clear();
+  first_chunk.resize(clusters.size() + 1);
   for (std::size_t c = 0; c < clusters.size(); ++c) {
     first_chunk[c] = chunks.size();
     for (std::size_t f = 0; f < clusters[c].size(); f += kMembersPerChunk) chunks.push_back({c, f});
   }
   first_chunk[clusters.size()] = chunks.size();
-  auto members_of = [&](const Chunk& k) {
-    const std::span<const std::size_t> all(clusters[k.cluster]);
+  auto members_of = [&](const typename ClusterBuffers<D>::Chunk& k) {
+    const std::span<const std::size_t> all = clusters[k.cluster];
     return all.subspan(k.first, std::min(kMembersPerChunk, all.size() - k.first));
   };
   auto add_chunks = [&](const auto& parts, std::size_t c) {
@@ -67,9 +46,9 @@ std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Cl
     return total;
   };
   const auto nk = static_cast<std::int64_t>(chunks.size()), nc = static_cast<std::int64_t>(clusters.size());
-  std::vector<std::pair<double, Vec<D>>, Eigen::aligned_allocator<std::pair<double, Vec<D>>>> moments(chunks.size());
-  std::vector<MotionSums<D>, Eigen::aligned_allocator<MotionSums<D>>> sums(chunks.size());
-  std::vector<ClusterMotion<D>> out(clusters.size());
+  moments.resize(chunks.size());
+  sums.resize(chunks.size());
+  motions.resize(clusters.size());
 #pragma omp parallel
   {
 #pragma omp for schedule(dynamic, 16)
@@ -81,25 +60,25 @@ std::vector<ClusterMotion<D>> cluster_motions(const ParticleSet<D>& ps, const Cl
         mass += moments[k].first;
         first_moment += moments[k].second;
       }
-      out[c].mass = mass;
-      out[c].centre = first_moment / mass;
+      motions[c].mass = mass;
+      motions[c].centre = first_moment / mass;
     }
 #pragma omp for schedule(dynamic, 16)
     for (std::int64_t k = 0; k < nk; ++k)
-      sums[k] = motion_sums<D>(members_of(chunks[k]), ps.m, ps.x, ps.v, ps.force, out[chunks[k].cluster].centre, form);
+      sums[k] = motion_sums<D>(members_of(chunks[k]), ps.m, ps.x, ps.v, ps.force, motions[chunks[k].cluster].centre, form);
 #pragma omp for schedule(static)
     for (std::int64_t c = 0; c < nc; ++c)
-      out[c] = motion_from_sums<D>(out[c].mass, out[c].centre, add_chunks(sums, c), dt, clusters[c].size() > 1);
+      motions[c] = motion_from_sums<D>(motions[c].mass, motions[c].centre, add_chunks(sums, c), dt, clusters[c].size() > 1);
   }
-  return out;
 }
 
 template <int D>
 void move_clusters(ParticleSet<D>& ps, const Clusters& clusters, const std::vector<ClusterMotion<D>>& motions,
-                   double dt, double damping) {
+                   double dt, double damping, ClusterBuffers<D>& buffers) {
   // The turn of every cluster first, then every member on its own (ps.cluster names its cluster),
   // so the members of one large cluster are shared among the threads.
-  std::vector<Turn<D>, Eigen::aligned_allocator<Turn<D>>> turns(clusters.size());
+  auto& turns = buffers.turns;
+  turns.resize(clusters.size());
   const auto nc = static_cast<std::int64_t>(clusters.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t c = 0; c < nc; ++c) turns[c] = free_turn<D>(motions[c].inertia, motions[c].omega, dt);
@@ -115,11 +94,15 @@ void move_clusters(ParticleSet<D>& ps, const Clusters& clusters, const std::vect
   }
 }
 
-template Clusters find_clusters<2>(ParticleSet<2>&, const NeighbourGrid<2>&);
-template Clusters find_clusters<3>(ParticleSet<3>&, const NeighbourGrid<3>&);
-template std::vector<ClusterMotion<2>> cluster_motions<2>(const ParticleSet<2>&, const Clusters&, double, InertiaForm);
-template std::vector<ClusterMotion<3>> cluster_motions<3>(const ParticleSet<3>&, const Clusters&, double, InertiaForm);
-template void move_clusters<2>(ParticleSet<2>&, const Clusters&, const std::vector<ClusterMotion<2>>&, double, double);
-template void move_clusters<3>(ParticleSet<3>&, const Clusters&, const std::vector<ClusterMotion<3>>&, double, double);
+template void find_clusters<2>(ParticleSet<2>&, const NeighbourGrid<2>&, Clusters&);
+template void find_clusters<3>(ParticleSet<3>&, const NeighbourGrid<3>&, Clusters&);
+template void cluster_motions<2>(const ParticleSet<2>&, const Clusters&, double, InertiaForm,
+                                 std::vector<ClusterMotion<2>>&, ClusterBuffers<2>&);
+template void cluster_motions<3>(const ParticleSet<3>&, const Clusters&, double, InertiaForm,
+                                 std::vector<ClusterMotion<3>>&, ClusterBuffers<3>&);
+template void move_clusters<2>(ParticleSet<2>&, const Clusters&, const std::vector<ClusterMotion<2>>&, double, double,
+                               ClusterBuffers<2>&);
+template void move_clusters<3>(ParticleSet<3>&, const Clusters&, const std::vector<ClusterMotion<3>>&, double, double,
+                               ClusterBuffers<3>&);
 
 }  // namespace sc

@@ -134,34 +134,24 @@ void ClustersOverRanks<D>::unpack(const std::vector<std::string>& received, std:
 }
 
 template <int D>
-Clusters ClustersOverRanks<D>::find(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Decomposition<D>& dd) {
+void ClustersOverRanks<D>::find(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Decomposition<D>& dd,
+                                Clusters& clusters) {
   std::vector<std::vector<std::size_t>> bonds;
   std::vector<int> source;
   unpack(dd.comm().all_gather(pack_rigid<D>(ps, nb, dd)), bonds, source);
-  // find_clusters' breadth-first search: seeds in key order (the one-process index order), each
-  // particle's bonds in its neighbour-list order.
+  // find_clusters' search: seeds in key order (the one-process index order), each particle's bonds
+  // in its neighbour-list order.
   std::vector<std::int32_t> number(keys_.size(), 0);
-  Clusters clusters;
-  for (std::size_t seed = 0; seed < keys_.size(); ++seed) {
-    if (number[seed] != 0) continue;
-    const auto c = static_cast<std::int32_t>(clusters.size() + 1);
-    number[seed] = c;
-    std::vector<std::size_t>& members = clusters.emplace_back(1, seed);  // also the breadth-first queue
-    for (std::size_t k = 0; k < members.size(); ++k)
-      for (const std::size_t j : bonds[members[k]])
-        if (number[j] == 0) {
-          number[j] = c;
-          members.push_back(j);
-        }
-  }
-  for (const auto& members : clusters)
+  clusters.search(keys_.size(), std::span(number), [&](std::size_t k) -> const std::vector<std::size_t>& { return bonds[k]; });
+  for (std::size_t c = 0; c < clusters.size(); ++c) {
+    const auto members = clusters[c];
     across_ranks_ += std::any_of(members.begin(), members.end(), [&](std::size_t k) { return source[k] != source[members[0]]; });
+  }
   for (std::size_t i = 0; i < ps.size(); ++i) {
     ps.cluster[i] = 0;
     if (dd.is_halo(i) || !joins(ps, i)) continue;
     ps.cluster[i] = number[std::lower_bound(keys_.begin(), keys_.end(), dd.key(i)) - keys_.begin()];
   }
-  return clusters;
 }
 
 template <int D>

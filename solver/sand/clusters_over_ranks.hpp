@@ -29,9 +29,9 @@ class ClustersOverRanks {
  public:
   /// find_clusters over the ranks of `dd`: `ps` is this rank's particles followed by the halo
   /// (whose ps.rigid must be its owners'), `nb` their neighbour lists. Writes ps.cluster (the
-  /// one-process numbers for this rank's own particles, 0 in the halo) and returns the clusters of
-  /// the whole scene, whose members index the gathered rigid sand (not ps). Collective.
-  Clusters find(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Decomposition<D>& dd);
+  /// one-process numbers for this rank's own particles, 0 in the halo) and puts the clusters of
+  /// the whole scene into `clusters`, whose members index the gathered rigid sand (not ps). Collective.
+  void find(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Decomposition<D>& dd, Clusters& clusters);
   /// cluster_motions and constrain_clusters_by_walls of `clusters`, the last find's, for step dt,
   /// from the gathered rigid sand: the same motions on every rank.
   std::vector<ClusterMotion<D>> motions(const Clusters& clusters, double dt, InertiaForm form, double mu) const;

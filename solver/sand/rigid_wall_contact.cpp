@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 #include "sand/sand_forces.hpp"
 
 namespace sc {
@@ -120,23 +122,6 @@ void append_cluster_wall_contacts(const ParticleSet<D>& ps, const NeighbourGrid<
 }
 
 
-/// append_cluster_wall_contacts of a large cluster into `out` (cleared first): chunks of members in
-/// parallel, joined in member order.
-template <int D>
-void gather_wall_contacts_in_parallel(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
-                                      std::span<const std::size_t> members, const Vec<D>& centre, double max_gap,
-                                      std::vector<WallContact<D>>& out) {
-  const std::size_t chunks = (members.size() + kChunk - 1) / kChunk;
-  std::vector<std::vector<WallContact<D>>> parts(chunks);
-#pragma omp parallel for schedule(dynamic)
-  for (std::int64_t k = 0; k < static_cast<std::int64_t>(chunks); ++k) {
-    const std::size_t first = static_cast<std::size_t>(k) * kChunk;
-    append_cluster_wall_contacts<D>(ps, nb, members.subspan(first, std::min(kChunk, members.size() - first)), centre,
-                                    max_gap, parts[k]);
-  }
-  out.clear();
-  for (const auto& part : parts) out.insert(out.end(), part.begin(), part.end());
-}
 }  // namespace
 
 template <int D>
@@ -197,29 +182,50 @@ double wall_contact_reach(const ParticleSet<D>& ps, std::span<const std::size_t>
 }
 
 template <int D>
-void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
-                                 std::span<const std::vector<std::size_t>> clusters,
-                                 std::vector<ClusterMotion<D>>& motions, double dt, double mu) {
+void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Clusters& clusters,
+                                 std::vector<ClusterMotion<D>>& motions, double dt, double mu,
+                                 WallContactBuffers<D>& buffers) {
   const auto n = static_cast<std::int64_t>(clusters.size());
+  const auto large = [&](std::int64_t c) { return std::ssize(clusters[c]) >= kLargeCluster; };
+  buffers.per_thread.resize(std::max<std::size_t>(buffers.per_thread.size(), omp_get_max_threads()));
+  buffers.reach.resize(clusters.size());
+  buffers.chunks.clear();
+  for (std::int64_t c = 0; c < n; ++c) {
+    if (!large(c)) continue;
+    buffers.reach[c] = wall_contact_reach<D>(ps, clusters[c], motions[c], dt);  // its members in parallel
+    for (std::size_t first = 0; first < clusters[c].size(); first += kChunk)
+      buffers.chunks.push_back({static_cast<std::size_t>(c), first});
+  }
+  buffers.of_chunk.resize(std::max(buffers.of_chunk.size(), buffers.chunks.size()));
+  const auto nk = static_cast<std::int64_t>(buffers.chunks.size());
 #pragma omp parallel
   {
-    std::vector<WallContact<D>> contacts;  // kept over this thread's clusters
+#pragma omp for schedule(dynamic)
+    for (std::int64_t k = 0; k < nk; ++k) {
+      const auto [c, first] = buffers.chunks[k];
+      const auto members = clusters[c].subspan(first, std::min(kChunk, clusters[c].size() - first));
+      buffers.of_chunk[k].clear();
+      append_cluster_wall_contacts<D>(ps, nb, members, motions[c].centre, buffers.reach[c], buffers.of_chunk[k]);
+    }
+    std::vector<WallContact<D>>& contacts = buffers.per_thread[omp_get_thread_num()];
+    // The sweeps of the large clusters (at their first chunk) and of the small ones, a cluster per thread.
+#pragma omp for schedule(dynamic, 1) nowait
+    for (std::int64_t k = 0; k < nk; ++k) {
+      const auto [c, first] = buffers.chunks[k];
+      if (first != 0) continue;
+      contacts.clear();
+      for (std::int64_t part = k; part < nk && buffers.chunks[part].cluster == c; ++part)
+        contacts.insert(contacts.end(), buffers.of_chunk[part].begin(), buffers.of_chunk[part].end());
+      resolve_wall_contacts<D>(motions[c], contacts, true, dt, mu);
+    }
 #pragma omp for schedule(dynamic)
     for (std::int64_t c = 0; c < n; ++c) {
-      if (std::ssize(clusters[c]) >= kLargeCluster) continue;
+      if (large(c)) continue;
       const double reach = wall_contact_reach<D>(ps, clusters[c], motions[c], dt);
       contacts.clear();
       append_cluster_wall_contacts<D>(ps, nb, clusters[c], motions[c].centre, reach, contacts);
       resolve_wall_contacts<D>(motions[c], contacts, clusters[c].size() > 1, dt, mu);
     }
-  }
-  // Large clusters one after the other: their members shared among the threads, the sweeps on one.
-  std::vector<WallContact<D>> contacts;
-  for (std::int64_t c = 0; c < n; ++c) {
-    if (std::ssize(clusters[c]) < kLargeCluster) continue;
-    const double reach = wall_contact_reach<D>(ps, clusters[c], motions[c], dt);
-    gather_wall_contacts_in_parallel<D>(ps, nb, clusters[c], motions[c].centre, reach, contacts);
-    resolve_wall_contacts<D>(motions[c], contacts, true, dt, mu);
   }
 }
 
@@ -230,9 +236,8 @@ void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D
                                                       double, double, double, int);                                          \
   template double wall_contact_reach<D>(const ParticleSet<D>&, std::span<const std::size_t>, const ClusterMotion<D>&,  \
                                         double);                                                                      \
-  template void constrain_clusters_by_walls<D>(const ParticleSet<D>&, const NeighbourGrid<D>&,                        \
-                                               std::span<const std::vector<std::size_t>>, std::vector<ClusterMotion<D>>&, \
-                                               double, double);
+  template void constrain_clusters_by_walls<D>(const ParticleSet<D>&, const NeighbourGrid<D>&, const Clusters&,        \
+                                               std::vector<ClusterMotion<D>>&, double, double, WallContactBuffers<D>&);
 SC_INSTANTIATE(2)
 SC_INSTANTIATE(3)
 #undef SC_INSTANTIATE

@@ -17,6 +17,7 @@
 
 #include "core/particle_set.hpp"
 #include "neighbours/neighbour_grid.hpp"
+#include "sand/clusters.hpp"
 #include "sand/rigid_body.hpp"
 
 namespace sc {
@@ -79,11 +80,27 @@ template <int D>
 double wall_contact_reach(const ParticleSet<D>& ps, std::span<const std::size_t> members, const ClusterMotion<D>& motion,
                           double dt);
 
-/// resolve_wall_contacts for every cluster (parallel over clusters; each writes only its motion),
-/// with the Coulomb coefficient mu of rough walls.
+/// The buffers of constrain_clusters_by_walls, kept from one step to the next so that a step
+/// allocates only when it needs more room than any step before.
 template <int D>
-void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb,
-                                 std::span<const std::vector<std::size_t>> clusters,
-                                 std::vector<ClusterMotion<D>>& motions, double dt, double mu);
+struct WallContactBuffers {
+  struct Chunk {
+    std::size_t cluster, first;  // a large cluster's members from `first`, a fixed number of them
+  };
+  std::vector<std::vector<WallContact<D>>> per_thread;  // the contacts of the cluster a thread sweeps
+  std::vector<std::vector<WallContact<D>>> of_chunk;    // the contacts of each chunk of chunks
+  std::vector<Chunk> chunks;                            // the large clusters' members in chunks, in order
+  std::vector<double> reach;                            // each large cluster's wall_contact_reach
+};
+
+/// resolve_wall_contacts for every cluster, with the Coulomb coefficient mu of rough walls. Each
+/// cluster's sweeps run on one thread and write only its motion, the clusters shared among the
+/// threads; the contacts of a large cluster are gathered by fixed chunks of members in parallel and
+/// joined in member order, so every cluster sees the same contacts in the same order at any number
+/// of threads (test sand/wall_contacts_of_many_large_clusters_are_the_same_at_1_and_2_threads).
+template <int D>
+void constrain_clusters_by_walls(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Clusters& clusters,
+                                 std::vector<ClusterMotion<D>>& motions, double dt, double mu,
+                                 WallContactBuffers<D>& buffers);
 
 }  // namespace sc

@@ -210,14 +210,14 @@ void Simulator<D>::integrate(double dt) {
   // Initial relaxation (a numerical device for cases that start from a lattice, not physics):
   // before relax_until, velocities decay at relax_rate so the start-up waves die out.
   const double damping = time_ < params_.relax_until ? std::exp(-params_.relax_rate * dt) : 1.0;
-  std::vector<ClusterMotion<D>> motions;
   if (has_sand_) {
     auto tc = timers_.time(Stage::Clusters);
     if (dd_) {
-      motions = clusters_over_ranks_.motions(clusters_, dt, params_.sand.inertia, params_.sand.wall_mu());
+      motions_ = clusters_over_ranks_.motions(clusters_, dt, params_.sand.inertia, params_.sand.wall_mu());
     } else {
-      motions = cluster_motions(ps_, clusters_, dt, params_.sand.inertia);  // eqs 13-18, from the velocities before the step
-      constrain_clusters_by_walls<D>(ps_, nb_, clusters_, motions, dt, params_.sand.wall_mu());
+      // eqs 13-18, from the velocities before the step
+      cluster_motions<D>(ps_, clusters_, dt, params_.sand.inertia, motions_, cluster_buffers_);
+      constrain_clusters_by_walls<D>(ps_, nb_, clusters_, motions_, dt, params_.sand.wall_mu(), wall_contacts_);
     }
   }
   if (tank_walls_) x_start_.resize(ps_.size());
@@ -229,7 +229,7 @@ void Simulator<D>::integrate(double dt) {
     symplectic_euler_step<D>(ps_.x[i], ps_.v[i], ps_.force[i], ps_.m[i], dt, damping);
   }
   if (params_.adaptive) decay_density_offsets(ps_, dt, params_.adaptive->blend_time);
-  if (has_sand_) move_clusters(ps_, clusters_, motions, dt, damping);
+  if (has_sand_) move_clusters<D>(ps_, clusters_, motions_, dt, damping, cluster_buffers_);
   if (tank_walls_) collide_with_tank(ps_, *tank_walls_, x_start_);  // last line behind the wall particles
 }
 
@@ -260,7 +260,8 @@ double Simulator<D>::step() {
     }
     auto tc = timers_.time(Stage::Clusters);
     if (!params_.sand.rigid_clusters) clusters_.clear();
-    else clusters_ = dd_ ? clusters_over_ranks_.find(ps_, nb_, *dd_) : find_clusters(ps_, nb_);
+    else if (dd_) clusters_over_ranks_.find(ps_, nb_, *dd_, clusters_);
+    else find_clusters(ps_, nb_, clusters_);
   }
   integrate(dt);
   last_dt_ = dt;

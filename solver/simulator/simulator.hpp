@@ -147,6 +147,9 @@ class Simulator {
   VecArrayOf<D> x_start_;     // positions of the moving particles before the step's move (the collision's path start)
   PorousWork<D> porous_work_;  // buffers of the porous step
   Clusters clusters_;         // rigid sand clusters of the current step (decomposed: of clusters_over_ranks_'s particles)
+  std::vector<ClusterMotion<D>> motions_;  // the clusters' rigid motions of the current step
+  ClusterBuffers<D> cluster_buffers_;      // buffers of the clusters' motions and moves
+  WallContactBuffers<D> wall_contacts_;    // buffers of the clusters' wall contacts
   ClustersOverRanks<D> clusters_over_ranks_;  // decomposed runs: the clusters of the whole scene
   bool has_sand_ = false;
   double last_dt_ = 0.0;      // step size of the previous step (the rigid stress, eq 12a, needs one)
