@@ -28,7 +28,10 @@ void find_clusters(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, Clusters& clu
 template <int D>
 void cluster_motions(const ParticleSet<D>& ps, const Clusters& clusters, double dt, InertiaForm form,
                      std::vector<ClusterMotion<D>>& motions, ClusterBuffers<D>& buffers) {
-  auto& [chunks, first_chunk, moments, sums, turns] = buffers;
+  auto& chunks = buffers.chunks;
+  auto& first_chunk = buffers.first_chunk;
+  auto& moments = buffers.moments;
+  auto& sums = buffers.sums;
   chunks.clear();
   first_chunk.resize(clusters.size() + 1);
   for (std::size_t c = 0; c < clusters.size(); ++c) {
