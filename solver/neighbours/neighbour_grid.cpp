@@ -23,11 +23,14 @@ constexpr std::size_t kSortBlock = 4096, kSortSlotsPerParticle = 4;
 // Slots per part of the parallel prefix sum of the slot sizes.
 constexpr std::size_t kPrefixPart = 16384;
 
-// Two candidates of the pair search (GCC/Clang vector extension; SSE2 lanes on x86-64).
-using Pair = double __attribute__((vector_size(16)));
-using PairMask = std::int64_t __attribute__((vector_size(16)));
-inline Pair load_pair(const double* p) {
-  Pair v;
+// Four candidates of the pair search (GCC/Clang vector extension: one AVX2 register, or two SSE2
+// ones on older targets). The candidate arrays carry kLanes − 1 entries of padding after the last
+// particle, so a test may read past the end of a range.
+constexpr std::size_t kLanes = 4;
+using Lanes = double __attribute__((vector_size(8 * kLanes)));
+using LaneMask = std::int64_t __attribute__((vector_size(8 * kLanes)));
+inline Lanes load_lanes(const double* p) {
+  Lanes v;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
@@ -76,7 +79,7 @@ void NeighbourGrid<D>::classify(const ParticleSet<D>& ps) {
   const std::size_t n = ps.size();
   if (n >= UINT32_MAX) throw std::runtime_error("neighbour search: too many particles");
   layout_ = ps.layout();
-  sorted_.resize(n + 1);
+  sorted_.resize(n + kLanes - 1);
   slot_of_.resize(n);
   inert_.resize(n);
   moving_.clear();
@@ -173,11 +176,13 @@ void NeighbourGrid<D>::sort_by_slot(const ParticleSet<D>& ps) {
     for (std::size_t s = first; s < last; ++s) slot_start_[s] += part_start_[q];
   }
   slot_start_[slots] = slot_start_[slots + 1] = static_cast<std::uint32_t>(n);
-  for (auto& c : cx_) c.resize(n + 1);
-  ch2_.resize(n + 1);
-  for (int d = 0; d < D; ++d) cx_[d][n] = 0.0;  // the padding
-  ch2_[n] = 0.0;
-  sorted_[n] = 0;
+  for (auto& c : cx_) {  // the particles' entries are written below
+    c.resize(n + kLanes - 1);
+    std::fill(c.begin() + n, c.end(), 0.0);  // the padding
+  }
+  ch2_.resize(n + kLanes - 1);
+  std::fill(ch2_.begin() + n, ch2_.end(), 0.0);
+  std::fill(sorted_.begin() + n, sorted_.end(), 0);
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < blocks; ++b) {
     std::uint32_t* fill = block_count_.data() + b * slots;
@@ -290,34 +295,38 @@ std::size_t NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::s
     if (d == D) break;
   }
   if (out.size() < used + candidates + 1) out.resize(std::max(2 * out.size(), used + candidates + 1));
-  std::array<Pair, D> xi2;
-  for (int d = 0; d < D; ++d) xi2[d] = Pair{xi[d], xi[d]};
-  const Pair hi2_2{hi2, hi2};
-  // Candidates k and k + 1: |x_i − x_k|² summed as Eigen's squaredNorm sums it, and
+  std::array<Lanes, D> xi_lanes;
+  for (int d = 0; d < D; ++d) xi_lanes[d] = Lanes{} + xi[d];
+  const Lanes hi2_lanes = Lanes{} + hi2;
+  // Candidates k .. k + 3: |x_i − x_k|² summed as Eigen's squaredNorm sums it, and
   // r² <= max(h_i², h_k²) tested as (r² <= h_i²) | (r² <= h_k²), so the lists are those of the
   // scalar test. A lane that is a neighbour is -1.
-  auto test_pair = [&](std::size_t k) {
-    Pair dx = xi2[0] - load_pair(cx_[0].data() + k);
-    Pair r2 = dx * dx;
+  auto test_lanes = [&](std::size_t k) {
+    Lanes dx = xi_lanes[0] - load_lanes(cx_[0].data() + k);
+    Lanes r2 = dx * dx;
     for (int d = 1; d < D; ++d) {
-      dx = xi2[d] - load_pair(cx_[d].data() + k);
+      dx = xi_lanes[d] - load_lanes(cx_[d].data() + k);
       r2 += dx * dx;
     }
-    return PairMask((r2 <= hi2_2) | (r2 <= load_pair(ch2_.data() + k)));
+    return LaneMask((r2 <= hi2_lanes) | (r2 <= load_lanes(ch2_.data() + k)));
   };
+  // Each candidate is written at the list's end, which advances when it is a neighbour.
   std::uint32_t* list = out.data();
   for (std::size_t r = 0; r < ranges; ++r) {
     std::size_t k = begin[r];
-    for (; k + 1 < end[r]; k += 2) {
-      const PairMask near = test_pair(k);
-      list[used] = sorted_[k];
-      used -= near[0];
-      list[used] = sorted_[k + 1];
-      used -= near[1];
+    for (; k + kLanes <= end[r]; k += kLanes) {
+      const LaneMask near = test_lanes(k);
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        list[used] = sorted_[k + l];
+        used -= near[l];
+      }
     }
-    if (k < end[r]) {  // an odd range's last candidate (the pair's second lane reads the next one)
-      list[used] = sorted_[k];
-      used -= test_pair(k)[0];
+    if (k < end[r]) {  // the range's last candidates (the other lanes read past them)
+      const LaneMask near = test_lanes(k);
+      for (std::size_t l = 0; k + l < end[r]; ++l) {
+        list[used] = sorted_[k + l];
+        used -= near[l];
+      }
     }
   }
   return used;
@@ -326,7 +335,7 @@ std::size_t NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::s
 template <int D>
 const std::vector<std::size_t>& NeighbourGrid<D>::storage_order() {
   storage_order_.clear();
-  const std::span<const std::uint32_t> sorted(sorted_.data(), std::max<std::size_t>(sorted_.size(), 1) - 1);  // no padding
+  const std::span<const std::uint32_t> sorted(sorted_.data(), std::max(sorted_.size(), kLanes - 1) - (kLanes - 1));  // no padding
   for (const std::uint32_t i : sorted)
     if (!inert_[i]) storage_order_.push_back(i);
   for (const std::uint32_t i : sorted)
