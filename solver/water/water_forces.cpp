@@ -104,6 +104,10 @@ class WaterForceOn {
     };
     if (params_.mueller_half_pressure) factors(std::true_type{});
     else factors(std::false_type{});
+    // Summed in a local: a store to the member f_ could alias any double the loop reads, so the
+    // compiler would store it and reload L_i after every pair.
+    Vec<D> f = f_;
+    const Mat<D> Li = corrected_ ? correction_[i_] : Mat<D>::Identity();
     for (int k = 0; k < b.size; ++k) {
       const std::size_t j = b.j[k];
       if (j == i_) continue;
@@ -112,10 +116,11 @@ class WaterForceOn {
       const double r = b.r[k];
       const Vec<D> grad = r >= si.h || r <= 0.0 ? Vec<D>::Zero() : Vec<D>(t.gradient[k] * d);
       const Vec<D> fp = t.pressure[k] * grad;
-      f_ += corrected_ ? corrected_pair_term<D>(correction_[i_], correction_[j], fp) : fp;
-      f_ += t.viscosity[k] * (ps_.v[j] - vi_);
-      f_ += t.tension[k] * d;
+      f += corrected_ ? corrected_pair_term<D>(Li, correction_[j], fp) : fp;
+      f += t.viscosity[k] * (ps_.v[j] - vi_);
+      f += t.tension[k] * d;
     }
+    f_ = f;
   }
 
   const ParticleSet<D>& ps_;
