@@ -23,10 +23,15 @@ constexpr std::size_t kSortBlock = 4096, kSortSlotsPerParticle = 4;
 // Slots per part of the parallel prefix sum of the slot sizes.
 constexpr std::size_t kPrefixPart = 16384;
 
-// Four candidates of the pair search (GCC/Clang vector extension: one AVX2 register, or two SSE2
-// ones on older targets). The candidate arrays carry kLanes − 1 entries of padding after the last
-// particle, so a test may read past the end of a range.
+// Candidates of the pair search tested at once (GCC/Clang vector extension): four doubles, one
+// register, where the target has AVX; two, one SSE2 register, otherwise (a wider vector there would
+// be split, and passing it by value changes the ABI, -Wpsabi). The candidate arrays carry
+// kLanes − 1 entries of padding after the last particle, so a test may read past the end of a range.
+#ifdef __AVX__
 constexpr std::size_t kLanes = 4;
+#else
+constexpr std::size_t kLanes = 2;
+#endif
 using Lanes = double __attribute__((vector_size(8 * kLanes)));
 using LaneMask = std::int64_t __attribute__((vector_size(8 * kLanes)));
 inline Lanes load_lanes(const double* p) {
@@ -298,7 +303,7 @@ std::size_t NeighbourGrid<D>::append_neighbours(const ParticleSet<D>& ps, std::s
   std::array<Lanes, D> xi_lanes;
   for (int d = 0; d < D; ++d) xi_lanes[d] = Lanes{} + xi[d];
   const Lanes hi2_lanes = Lanes{} + hi2;
-  // Candidates k .. k + 3: |x_i − x_k|² summed as Eigen's squaredNorm sums it, and
+  // Candidates k .. k + kLanes − 1: |x_i − x_k|² summed as Eigen's squaredNorm sums it, and
   // r² <= max(h_i², h_k²) tested as (r² <= h_i²) | (r² <= h_k²), so the lists are those of the
   // scalar test. A lane that is a neighbour is -1.
   auto test_lanes = [&](std::size_t k) {

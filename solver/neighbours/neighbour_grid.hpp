@@ -105,7 +105,8 @@ class NeighbourGrid {
   bool binned_ = false;                      // bin() has run: the walls' cache is valid
   std::vector<std::uint8_t> near_moving_, spread_;  // per cell: a non-inert particle in the 3^D block (bin)
   // Candidates of the pair search in sorted_ order (with its padding), one array per coordinate
-  // and one of squared supports, so that the distance test runs on four candidates at once.
+  // and one of squared supports, so that the distance test runs on four candidates at once (two
+  // without AVX).
   std::array<std::vector<double>, D> cx_;
   std::vector<double> ch2_;
   std::vector<std::uint32_t> part_start_;   // per part of the slots: start in sorted_ (sort_by_slot)
