@@ -811,6 +811,76 @@ BOOST_AUTO_TEST_CASE(water_grain_coupling_conserves_momentum_and_water) {
   BOOST_TEST(water_drift < 1e-12);
 }
 
+// [Rungjiratananon 2008: water-grain pressure and viscosity, fixed], against the kernels written out
+// here: a water particle at distance r < h from a grain is pushed along x_i − x_g by
+// (V_i V_g/4)(p_i + p_g) 45 (h − r)²/(π h⁶) (the spiky gradient) and dragged towards the grain's
+// velocity by μ (V_i V_g/2) 45 (h − r)/(π h⁶) (v_g − v_i) (the viscosity Laplacian); the grain takes
+// the negative, and beyond h neither acts.
+BOOST_AUTO_TEST_CASE(water_grain_force_is_the_spiky_pressure_and_the_laplacian_viscosity) {
+  Params p;
+  p.coupling_support = 3e-3;
+  p.coupling_viscosity = 0.05;
+  p.grain_pressure = 20.0;
+  Grains<3> g;
+  g.add(Vec<3>(0.01, 0.01, 0.01), 1e-3, 2650.0);
+  g.v[0] = Vec<3>(0.02, -0.01, 0.03);
+  ParticleSet<3> water;
+  water.append();
+  const Vec<3> d(1.1e-3, -0.7e-3, 0.4e-3);  // x_i − x_g
+  water.x[0] = g.x[0] + d;
+  water.v[0] = Vec<3>(-0.01, 0.02, 0.0);
+  water.m[0] = 1e-6;
+  water.h[0] = 3e-3;
+  water.rho0[0] = 1000.0;
+  water.rho[0] = 1010.0;
+  water.p[0] = 150.0;
+  water.phase[0] = static_cast<std::uint8_t>(Phase::Water);
+  const double h = p.coupling_support, r = d.norm(), Vi = 1e-6 / 1010.0, Vg = g.volume(0);
+  const double h6 = std::pow(h, 6);
+  const Vec<3> pressure = (Vi * Vg / 4.0) * (150.0 + 20.0) * 45.0 * (h - r) * (h - r) / (pi * h6) * (d / r);
+  const Vec<3> viscous = p.coupling_viscosity * (Vi * Vg / 2.0) * 45.0 * (h - r) / (pi * h6) * (g.v[0] - water.v[0]);
+  const Vec<3> expected = pressure + viscous;
+  const Vec<3> f = water_grain_force(water, 0, g, 0, p);
+  BOOST_TEST((f - expected).norm() <= 1e-12 * expected.norm());
+  BOOST_TEST(pressure.norm() > viscous.norm());  // both terms weigh in the check
+  BOOST_TEST(viscous.norm() > 0.01 * pressure.norm());
+  CouplingGrids<3> grids;
+  bin_coupling(g, water, p, grids);
+  coupling_forces(g, water, grids, p);
+  BOOST_TEST((water.force[0] - expected).norm() <= 1e-12 * expected.norm());
+  BOOST_TEST((g.force[0] + water.force[0]).norm() <= 1e-15 * expected.norm());
+  water.x[0] = g.x[0] + (1.001 * h / r) * d;
+  BOOST_TEST(water_grain_force(water, 0, g, 0, p).norm() == 0.0);
+}
+
+// [Rungjiratananon 2008: wetness propagation, fixed], one step: an over-wet grain gives each of its
+// drier touching neighbours k_p Δt (w − w_f C)/n, n the number of them, and loses the sum; the water
+// moved carries the giver's velocity. A row of three grains, the middle one saturated and moving.
+BOOST_AUTO_TEST_CASE(wetness_propagation_shares_the_excess_among_the_drier_neighbours) {
+  Params p;
+  p.stiffness = 1e3;
+  p.wet_threshold = 0.5;
+  p.propagation_rate = 100.0;
+  const double R = 1e-3, dt = 1e-4;
+  Grains<2> g;
+  for (int i = 0; i < 3; ++i) g.add(Vec<2>(i * 1.99 * R, 0.0), R, 2650.0);
+  const double C = g.capacity(1, p);
+  g.water[1] = C;
+  g.v[1] = Vec<2>(0.1, -0.2);
+  const double m_end = g.mass(0), m_mid = g.mass(1);
+  CellGrid<2> grid;
+  bin_grains(g, p, grid);
+  propagate_wetness(g, grid, p, dt);
+  const double given = p.propagation_rate * dt * (C - p.wet_threshold * C);
+  BOOST_TEST(g.water[1] == C - given, boost::test_tools::tolerance(1e-12));
+  for (const std::size_t e : {std::size_t{0}, std::size_t{2}}) {
+    BOOST_TEST(g.water[e] == 0.5 * given, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST((g.v[e] - (0.5 * given / (m_end + 0.5 * given)) * Vec<2>(0.1, -0.2)).norm() <= 1e-15);
+  }
+  BOOST_TEST((g.v[1] - Vec<2>(0.1, -0.2)).norm() <= 1e-15);  // what it gives has its own velocity
+  BOOST_TEST(m_mid - g.mass(1) == given, boost::test_tools::tolerance(1e-9));
+}
+
 // [Rungjiratananon 2008: wetness propagation, fixed]: over-wet grains pass water to drier touching
 // grains and lose the same amount (held water conserved to 1e-12); with k_p = 0 nothing moves.
 BOOST_AUTO_TEST_CASE(wetness_propagation_conserves_water) {

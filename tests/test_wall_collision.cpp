@@ -1,8 +1,12 @@
 // Collision of particles with the box tank's walls (Müller, Charypar & Gross 2003: collision
-// detection and response at container walls; perfectly inelastic, slip or no-slip per side).
+// detection and response at container walls; perfectly inelastic, slip or no-slip per side), and
+// the pressure of the wall particles (boundary/wall_pressure.hpp).
+#include <random>
+
 #include <boost/test/unit_test.hpp>
 
 #include "boundary/wall_collision.hpp"
+#include "boundary/wall_pressure.hpp"
 #include "simulator/simulator.hpp"
 
 using namespace sc;
@@ -37,6 +41,19 @@ ParticleSet<2> moved_particle(const Vec<2>& x, const Vec<2>& v, double dt, Parti
 }
 
 double kinetic_energy(const ParticleSet<2>& ps) { return 0.5 * ps.m[0] * ps.v[0].squaredNorm(); }
+
+/// Appends a particle of the phase at x with support h and density rho, pressure p.
+std::size_t add_particle(ParticleSet<2>& ps, Phase phase, const Vec<2>& x, double h, double rho, double p) {
+  const std::size_t i = ps.append();
+  ps.phase[i] = static_cast<std::uint8_t>(phase);
+  ps.x[i] = x;
+  ps.h[i] = h;
+  ps.m[i] = 1e-3;
+  ps.rho0[i] = 1000.0;
+  ps.rho[i] = rho;
+  ps.p[i] = p;
+  return i;
+}
 
 }  // namespace
 
@@ -148,6 +165,69 @@ BOOST_AUTO_TEST_CASE(thrown_particle_never_leaves_a_slip_box_and_only_loses_ener
   BOOST_TEST(bounded);
   BOOST_TEST((sim.particles().x[0] - Vec<2>(1.0, 0.0)).norm() == 0.0);
   BOOST_TEST(sim.particles().v[0].norm() == 0.0);
+}
+
+// p_w = Σ_f (p_f + ρ_f g·(x_w − x_f)) W_wf / Σ_f W_wf: each term is the pressure a hydrostatic
+// field has at the wall particle, so a water column at rest gives its own pressure there exactly,
+// whatever the weights. A wall particle below the water (gravity pulls towards it) gets more than
+// any water particle has.
+BOOST_AUTO_TEST_CASE(wall_pressure_continues_a_hydrostatic_field_exactly) {
+  constexpr double h = 0.04, rho = 1000.0, g = 9.81, top = 0.3;
+  ParticleSet<2> ps;
+  const std::size_t wall = add_particle(ps, Phase::Boundary, Vec<2>(0.1, 0.1), h, rho, 0.0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-0.9 * h / std::sqrt(2.0), 0.9 * h / std::sqrt(2.0));
+  double p_max = 0.0;
+  for (int k = 0; k < 12; ++k) {
+    const Vec<2> x(0.1 + u(rng), 0.1 + 0.01 + std::abs(u(rng)));
+    p_max = std::max(p_max, rho * g * (top - x[1]));
+    add_particle(ps, Phase::Water, x, h, rho, rho * g * (top - x[1]));
+  }
+  add_particle(ps, Phase::Boundary, Vec<2>(0.5, 0.1), h, rho, 123.0);  // no water within reach
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  EquationOfState eos;
+  eos.sound_speed = 20.0;
+  extrapolate_wall_pressure(ps, nb, Vec<2>(0.0, -g), eos);
+  const double expected = rho * g * (top - 0.1);
+  BOOST_TEST(ps.p[wall] > p_max);
+  BOOST_TEST(ps.p[wall] == expected, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(ps.rho[wall] == eos.density(expected, rho), boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(ps.p[ps.size() - 1] == 0.0);
+}
+
+// Without gravity the wall particle takes the Shepard mean of its neighbours' pressures with the
+// poly6 weights of its own support, W ∝ (h² − r²)³: here two water particles at 0.3 h and 0.7 h.
+// A negative mean is clamped to zero when the state equation clamps.
+BOOST_AUTO_TEST_CASE(wall_pressure_is_the_poly6_weighted_mean_of_the_water_near_it) {
+  constexpr double h = 0.05, rho = 1000.0;
+  const auto scene = [&](double p1, double p2) {
+    ParticleSet<2> ps;
+    add_particle(ps, Phase::Boundary, Vec<2>(0.2, 0.2), h, rho, 0.0);
+    add_particle(ps, Phase::Water, Vec<2>(0.2 + 0.3 * h, 0.2), 0.6 * h, rho, p1);  // its own support smaller
+    add_particle(ps, Phase::Water, Vec<2>(0.2, 0.2 + 0.7 * h), 0.6 * h, rho, p2);
+    return ps;
+  };
+  const auto weight = [&](double r) { return std::pow(h * h - r * r, 3); };
+  const double w1 = weight(0.3 * h), w2 = weight(0.7 * h);
+  EquationOfState eos;
+  eos.sound_speed = 20.0;
+  ParticleSet<2> ps = scene(1000.0, 3000.0);
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  extrapolate_wall_pressure(ps, nb, Vec<2>(Vec<2>::Zero()), eos);
+  BOOST_TEST(ps.p[0] == (1000.0 * w1 + 3000.0 * w2) / (w1 + w2), boost::test_tools::tolerance(1e-12));
+  eos.clamp_negative = true;
+  ps = scene(-1000.0, -3000.0);
+  nb.rebuild(ps);
+  extrapolate_wall_pressure(ps, nb, Vec<2>(Vec<2>::Zero()), eos);
+  BOOST_TEST(ps.p[0] == 0.0);
+  BOOST_TEST(ps.rho[0] == rho);
+  eos.clamp_negative = false;
+  ps = scene(-1000.0, -3000.0);
+  nb.rebuild(ps);
+  extrapolate_wall_pressure(ps, nb, Vec<2>(Vec<2>::Zero()), eos);
+  BOOST_TEST(ps.p[0] == -(1000.0 * w1 + 3000.0 * w2) / (w1 + w2), boost::test_tools::tolerance(1e-12));
 }
 
 BOOST_AUTO_TEST_SUITE_END()
