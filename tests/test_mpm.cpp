@@ -176,6 +176,25 @@ BOOST_AUTO_TEST_CASE(the_hencky_stress_of_a_rotated_stretch_is_the_closed_form) 
   BOOST_TEST((hencky_kirchhoff<2>(F, m) - expected).norm() <= 1e-9 * expected.norm());
 }
 
+// [Klár 2016: Lamé parameters] from Young's modulus E and Poisson's ratio ν: in 3-D a bar stretched
+// by the log strain ε along x and contracted by −ν ε across carries the uniaxial stress E ε and
+// none across; in 2-D (plane strain, no strain out of the plane) the same holds with ν/(1 − ν) and
+// E/(1 − ν²). The Hencky stress is linear in the log strain, so these hold to round-off at any ε.
+BOOST_AUTO_TEST_CASE(youngs_modulus_and_poissons_ratio_give_the_uniaxial_stress) {
+  const double E = 2e6, nu = 0.3, eps = 0.02;
+  const SandModel m3 = SandModel::from(3, E, nu, 30.0, true);
+  const Mat<3> F3 = Vec<3>(std::exp(eps), std::exp(-nu * eps), std::exp(-nu * eps)).asDiagonal();
+  const Mat<3> tau3 = hencky_kirchhoff<3>(F3, m3);
+  BOOST_TEST(tau3(0, 0) == E * eps, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(std::abs(tau3(1, 1)) <= 1e-12 * E * eps);
+  BOOST_TEST(std::abs(tau3(2, 2)) <= 1e-12 * E * eps);
+  const SandModel m2 = SandModel::from(2, E, nu, 30.0, true);
+  const Mat<2> F2 = Vec<2>(std::exp(eps), std::exp(-nu / (1.0 - nu) * eps)).asDiagonal();
+  const Mat<2> tau2 = hencky_kirchhoff<2>(F2, m2);
+  BOOST_TEST(tau2(0, 0) == E / (1.0 - nu * nu) * eps, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(std::abs(tau2(1, 1)) <= 1e-12 * E * eps);
+}
+
 // [Klár 2016: return mapping] A compressed trial outside the cone lands on it (‖τ̂‖ = −α tr τ) with
 // its trace kept; an expanded one goes to the apex, at c cot φ of isotropic tension with cohesion;
 // a trial inside stays.
@@ -223,6 +242,24 @@ Mat<2> simple_shear_stress(double phi) {
 // reaches only on a plane that is not the one shearing. A layer flowing on a slope therefore keeps
 // flowing down to tan θ = sin φ (26.6 deg for φ = 30 deg, 18.9 for 20, 29.8 for 35): the reason the
 // suite's MPM sand piles come to rest below φ (cases/angle_of_repose).
+// [Klár 2016: cone slope α] In 3-D the cone ‖τ̂‖_F = −α tr τ passes through the compression corners
+// of the Mohr-Coulomb pyramid: a triaxial compression state (σ_a, σ_a, σ_b), σ_b < σ_a < 0, at
+// Mohr-Coulomb's limit σ_a − σ_b = −(σ_a + σ_b) sin φ lies on it, and a triaxial extension state
+// (σ_b, σ_b, σ_a) at the same limit lies inside it (the cone is inscribed between the two corners).
+BOOST_AUTO_TEST_CASE(the_3d_cone_passes_through_mohr_coulombs_compression_corners) {
+  for (const double phi : {20.0, 30.0, 35.0, 45.0}) {
+    const double s = std::sin(phi * pi / 180.0);
+    const double sa = -(1.0 - s), sb = -(1.0 + s);  // σ_a − σ_b = 2s = −(σ_a + σ_b) s
+    const auto cone_ratio = [&](const Vec<3>& sigma) {
+      const Vec<3> dev = (sigma.array() - sigma.sum() / 3.0).matrix();
+      return dev.norm() / (-sigma.sum());  // ‖τ̂‖_F / (−tr τ), α on the cone
+    };
+    const double alpha = cone_slope(3, phi);
+    BOOST_TEST(cone_ratio(Vec<3>(sa, sa, sb)) == alpha, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(cone_ratio(Vec<3>(sb, sb, sa)) < alpha);
+  }
+}
+
 BOOST_AUTO_TEST_CASE(steady_simple_shear_carries_sin_phi_on_the_shearing_plane) {
   for (const double phi : {20.0, 30.0, 35.0}) {
     const Mat<2> tau = simple_shear_stress(phi);

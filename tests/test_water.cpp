@@ -237,6 +237,36 @@ BOOST_AUTO_TEST_CASE(gradient_correction_is_exact_for_a_linear_field) {
   BOOST_TEST(tested > 100);
 }
 
+BOOST_AUTO_TEST_CASE(gradient_correction_fades_in_without_a_jump) {
+  // L = (1 − w) 𝟙 + w M⁻¹ with w rising from 0 at λ_min(M) = none to 1 at full: a configuration
+  // crossing either end of the band changes L continuously. Scaling every mass by s scales M by s;
+  // at each end of the band (none = 0.5, full = 0.8) L is taken with λ_min(sM) 1e-7 below and above
+  // it: the two differ by O(1e-7), L is 𝟙 below the band and M⁻¹ above it.
+  const ParticleSet<3> ps = random_cloud(3, 400);
+  NeighbourGrid<3> nb;
+  nb.rebuild(ps);
+  int tested = 0;
+  for (std::size_t i = 0; i < ps.size() && tested < 20; ++i) {
+    const Mat<3> M = moment_matrix(ps, nb, i);
+    const Vec<3> lambda = Eigen::SelfAdjointEigenSolver<Mat<3>>(M, Eigen::EigenvaluesOnly).eigenvalues();
+    if (!(lambda[0] > 0.0) || lambda[2] / lambda[0] > 10.0) continue;
+    const auto L_at = [&](double lambda_min) {
+      ParticleSet<3> scaled = ps;
+      for (double& m : scaled.m) m *= lambda_min / lambda[0];
+      return std::pair{gradient_correction(scaled, nb, i), Mat<3>(moment_matrix(scaled, nb, i))};
+    };
+    for (const double end : {0.5, 0.8}) {
+      const auto [below, M_below] = L_at(end - 1e-7);
+      const auto [above, M_above] = L_at(end + 1e-7);
+      BOOST_TEST((above - below).norm() <= 1e-5 * M_above.inverse().norm());
+      if (end == 0.5) BOOST_TEST((below - Mat<3>::Identity()).norm() == 0.0);
+      if (end == 0.8) BOOST_TEST((above - M_above.inverse()).norm() <= 1e-12 * M_above.inverse().norm());
+    }
+    ++tested;
+  }
+  BOOST_TEST(tested == 20);
+}
+
 BOOST_AUTO_TEST_CASE(pressure_force_reproduces_linear_gradient) {
   // On a lattice with P = a·x, the corrected eq-4 force on an interior particle is −V_i a (the
   // thesis' P_i + P_j form); Müller's (P_i + P_j)/2 gives half of it (docs/equations.md, eq 4).
@@ -354,12 +384,18 @@ BOOST_AUTO_TEST_CASE(surface_tension_conserves_momentum_with_unequal_masses) {
 
 BOOST_AUTO_TEST_CASE(all_water_forces_sum_to_zero) {
   // The assembled pair forces (eq 4 with correction, eq 5, surface tension) between moving
-  // particles conserve linear momentum.
+  // particles conserve linear momentum. The cloud's moment matrices lie below the default band
+  // (L would be 𝟙 throughout), so the band is put below 0: every L is the full M⁻¹, far from 𝟙.
   ParticleSet<3> ps = random_cloud(11, 400);
   NeighbourGrid<3> nb;
   nb.rebuild(ps);
-  MatArray<3> L;
-  compute_gradient_corrections(ps, nb, L);
+  MatArray<3> L(ps.size());
+  int corrected = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    L[i] = gradient_correction(ps, nb, i, -2.0, -1.0);
+    corrected += (L[i] - Mat<3>::Identity()).norm() > 0.5;
+  }
+  BOOST_TEST(corrected > 300);
   WaterParams params;
   params.viscosity = 0.5;
   params.surface_tension = 1.0;
