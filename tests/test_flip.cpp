@@ -9,6 +9,7 @@
 #include <cmath>
 #include <random>
 
+#include "core/errors.hpp"
 #include "flip/extrapolate.hpp"
 #include "flip/flip_solver.hpp"
 
@@ -540,6 +541,28 @@ BOOST_AUTO_TEST_CASE(sand_takes_the_grid_velocity_and_water_the_flip_blend) {
   BOOST_TEST(max_speed(after) > 0.05);
   BOOST_TEST(sand_is_pic);
   BOOST_TEST(water_from_pic > 1e-4);
+}
+
+// A runaway speed (one water particle at 1e6 m/s) shrinks the CFL step to 1e-8 s, 1e-5 of the
+// case's step: the step stops at once with a blow-up naming the step (1, counted from 1), the
+// fastest particle and its speed, instead of creeping on in steps a hundred thousand times shorter.
+BOOST_AUTO_TEST_CASE(a_runaway_speed_stops_the_step_as_a_blow_up) {
+  auto params = tank<2>(Vec<2>(0.4, 0.2), 0.01);
+  FlipParticles<2> ps;
+  const MacGrid<2> grid(params.tank_lo, params.tank_hi, params.dx);
+  seed_box<2>(grid, Vec<2>(0.3, 0.0), Vec<2>(0.4, 0.1), Phase::Water, 1000.0, 0.5, 2, ps);
+  ps.v[5] = Vec<2>(-1e6, 0.0);
+  FlipSolver<2> solver(params, ps);
+  BOOST_TEST(solver.next_dt() < 1e-4 * params.dt_max);
+  try {
+    solver.step();
+    BOOST_ERROR("a step of " << solver.next_dt() << " s ran");
+  } catch (const BlowUpError& e) {
+    BOOST_TEST(e.step() == 1);
+    BOOST_TEST(e.particle() == 5);
+    BOOST_TEST(std::string(e.what()).find("1e+06 m/s") != std::string::npos, e.what());
+  }
+  BOOST_TEST(solver.time() == 0.0);
 }
 
 // Determinism: the gathered transfers and fixed orders give bitwise the same particles with 1 and

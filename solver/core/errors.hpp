@@ -3,6 +3,7 @@
 // names the step, time, particle and field; an error on one rank of a run over MPI ranks is made
 // known to every rank, naming the rank (RankError).
 #pragma once
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -23,8 +24,9 @@ class InputError : public std::runtime_error {
   std::string file_, path_, rule_;
 };
 
-/// The simulation diverged (NaN/Inf, a particle left the domain, density out of its window).
-/// Exit code 3; the caller keeps the last good state.
+/// The simulation diverged (NaN/Inf, a particle left the domain, density out of its window, a step
+/// shrunk without end). Exit code 3; the caller keeps the last good state. `step` is the step that
+/// failed, counted from 1: the last good state is the one after step − 1.
 class BlowUpError : public std::runtime_error {
  public:
   BlowUpError(long step, double time, long particle, std::string phase, std::string field, std::string what)
@@ -38,6 +40,21 @@ class BlowUpError : public std::runtime_error {
  private:
   long step_, particle_;
 };
+
+/// The shortest step, as a fraction of the case's step, that a method whose step follows a CFL
+/// condition (MPM's substeps, FLIP's steps) may take. Speeds running away shrink such a step without
+/// end, and the run would stall, or overflow its count of substeps, instead of stopping.
+inline constexpr double kShortestStepFraction = 1e-4;
+
+/// The blow-up of a step that the speed of `particle` shrank to `stable`, below kShortestStepFraction
+/// of the case's step `nominal`.
+inline BlowUpError collapsed_step(long step, double time, long particle, std::string phase, double speed,
+                                  double stable, double nominal) {
+  char what[200];
+  std::snprintf(what, sizeof what, "a speed of %.3g m/s shrinks the stable step to %.3g s, below %g of the case's step (%g s)",
+                speed, stable, kShortestStepFraction, nominal);
+  return BlowUpError(step, time, particle, std::move(phase), "v", what);
+}
 
 /// An error on one rank of a run over several MPI ranks, made known to every rank (Comm::agree) so
 /// that all of them stop alike: the lowest failing rank, its error's message, and the kind of that

@@ -267,7 +267,7 @@ double DemMethod<D>::step() {
   step_grains(dt);
   for (std::size_t i = 0; i < grains_.size(); ++i)
     if (!grains_.x[i].allFinite() || !grains_.v[i].allFinite())
-      throw BlowUpError(steps_, time_, static_cast<long>(i), "sand", grains_.x[i].allFinite() ? "v" : "x", "not finite");
+      throw BlowUpError(steps_ + 1, time_, static_cast<long>(i), "sand", grains_.x[i].allFinite() ? "v" : "x", "not finite");
   if (water_) {
     auto scope = timers_.time(dem::DemStage::Water);
     dem::exchange_with_water(grains_, water_->particles(), params_, dt, exchange_);

@@ -106,13 +106,18 @@ void FlipSolver<D>::update_particles(double dt) {
   }
   for (std::size_t i = 0; i < ps_.size(); ++i)
     if (!ps_.x[i].allFinite() || !ps_.v[i].allFinite())
-      throw BlowUpError(steps_, time_, static_cast<long>(i), ps_.is_sand(i) ? "sand" : "water",
+      throw BlowUpError(steps_ + 1, time_, static_cast<long>(i), ps_.is_sand(i) ? "sand" : "water",
                         ps_.x[i].allFinite() ? "v" : "x", "not finite");
 }
 
 template <int D>
 double FlipSolver<D>::step() {
   const double dt = next_dt();
+  if (!(dt >= kShortestStepFraction * params_.dt_max)) {
+    const auto fastest = std::ranges::max_element(ps_.v, {}, [](const Vec<D>& u) { return u.squaredNorm(); }) - ps_.v.begin();
+    throw collapsed_step(steps_ + 1, time_, fastest, ps_.is_sand(fastest) ? "sand" : "water", ps_.v[fastest].norm(), dt,
+                         params_.dt_max);
+  }
   {
     auto scope = timers_.time(FlipStage::Transfer);
     transfer_to_grid();
@@ -129,7 +134,7 @@ double FlipSolver<D>::step() {
     try {
       stats_ = project<D>(grid_, cells_, dt, params_.cg_tolerance, params_.cg_max_iterations, u_, p_);
     } catch (const std::runtime_error& e) {
-      throw BlowUpError(steps_, time_, -1, "grid", "pressure", e.what());
+      throw BlowUpError(steps_ + 1, time_, -1, "grid", "pressure", e.what());
     }
   }
   sand_step(dt, u_before_projection_);

@@ -80,7 +80,8 @@ class FlipSolver {
   FlipSolver(const FlipParams<D>& params, FlipParticles<D> particles);
 
   /// One step [Zhu-Bridson 2005: Simulation algorithm]; returns Δt [s]. Throws BlowUpError when a
-  /// particle's position or velocity is no longer finite, or the pressure solve fails.
+  /// particle's position or velocity is no longer finite, the pressure solve fails, or Δt falls
+  /// below kShortestStepFraction of dt_max (core/errors.hpp collapsed_step; checked first).
   double step();
   /// Δt of the next step: cfl·Δx over the fastest particle, at most dt_max.
   double next_dt() const;

@@ -136,7 +136,7 @@ void MpmMethod<D>::check_state() const {
   for (std::size_t i = 0; i < ps.size(); ++i) {
     const char* field = !ps.x[i].allFinite() ? "x" : (!ps.v[i].allFinite() ? "v" : (!(ps.J[i] > 0.0) ? "J" : nullptr));
     if (field)
-      throw BlowUpError(steps_, solver_.time(), static_cast<long>(i), ps.is_sand(i) ? "sand" : "water", field,
+      throw BlowUpError(steps_ + 1, solver_.time(), static_cast<long>(i), ps.is_sand(i) ? "sand" : "water", field,
                         field[0] == 'J' ? "volume ratio not positive" : "not finite");
   }
 }
