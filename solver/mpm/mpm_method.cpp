@@ -144,6 +144,13 @@ void MpmMethod<D>::check_state() const {
 template <int D>
 double MpmMethod<D>::step() {
   this->keep_last_good();
+  const double stable = solver_.stable_step();
+  if (!(stable >= kShortestStepFraction * dt_)) {
+    const mpm::Particles<D>& ps = solver_.particles();
+    const auto fastest = std::ranges::max_element(ps.v, {}, [](const Vec<D>& u) { return u.squaredNorm(); }) - ps.v.begin();
+    throw collapsed_step(steps_ + 1, solver_.time(), fastest, ps.is_sand(fastest) ? "sand" : "water", ps.v[fastest].norm(),
+                         stable, dt_);
+  }
   substeps_ += solver_.advance(dt_);
   check_state();
   ++steps_;

@@ -57,7 +57,9 @@ class MpmMethod final : public ParticleAdapter<D, mpm::Particles<D>> {
   MpmMethod(mpm::MpmSolver<D> solver, double dt, double support, std::vector<std::uint8_t> bed);
 
   std::string_view name() const override { return "mpm"; }
-  /// Keeps the particles as the last good state, then advances the case's step in substeps.
+  /// Keeps the particles as the last good state, then advances the case's step in substeps. Throws
+  /// BlowUpError (core/errors.hpp collapsed_step), before any substep, where the stable substep is
+  /// below kShortestStepFraction of the case's step.
   double step() override;
   double time() const override { return solver_.time(); }
   long steps() const override { return steps_; }

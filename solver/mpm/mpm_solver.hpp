@@ -59,8 +59,6 @@ class MpmSolver {
   MpmSolver(Params<D> params, Particles<D> particles);
 
   /// Advances by dt in equal substeps no longer than stable_step(); returns the substep count.
-  /// Throws BlowUpError (core/errors.hpp collapsed_step), before any substep, where stable_step()
-  /// is below kShortestStepFraction of dt.
   int advance(double dt);
   /// One MPM step of size dt: stresses, particle-to-grid, grid update and exchange, grid-to-particle
   /// with the deformation update and the return mapping.
@@ -71,8 +69,6 @@ class MpmSolver {
   double stable_step() const;
 
   double time() const { return time_; }
-  /// The calls of advance() so far.
-  long steps() const { return steps_; }
   const Particles<D>& particles() const { return ps_; }
   const Params<D>& params() const { return params_; }
   const Nodes<D>& nodes() const { return nodes_; }
@@ -110,7 +106,6 @@ class MpmSolver {
   std::vector<Mat<D>> tau_;                 // the sand's τ at its F^E, from the return mapping's SVD
   StageClock<MpmStage> timers_;
   double time_ = 0.0;
-  long steps_ = 0;
 };
 
 }  // namespace sc::mpm
