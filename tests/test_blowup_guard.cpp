@@ -77,4 +77,35 @@ BOOST_AUTO_TEST_CASE(last_good_is_the_state_before_the_step) {
   check_guard<2>(root + "/tests/reliability/small_dam_break_adaptive.json", 40);
 }
 
+// A speed that runs away shrinks the CFL step without end; the run must stop as a blow-up
+// (core/errors.hpp kShortestStepFraction) instead of stalling. Particle 0 (the first moving one in
+// storage, a water particle of the dam) is set to 1e6 m/s after one ordinary step: its next step
+// would be 0.4 (0.01 m) / (1e6 m/s) = 4e-9 s, below 1e-4 of the case's 1 ms. At 100 m/s (3.5e-5 s)
+// the step runs.
+BOOST_AUTO_TEST_CASE(a_runaway_speed_stops_the_step_as_a_blow_up) {
+  const CaseSpec spec = load_case(std::string(SANDCASTLE_SOURCE_DIR) + "/tests/reliability/small_dam_break.json");
+  const double dx = spec.tiers.at("quick").spacings.front();
+  for (const double speed : {100.0, 1e6}) {
+    Simulator<2> sim(build_scene<2>(spec, dx), SimulationParams::from_case(spec, dx));
+    sim.step();
+    BOOST_TEST_REQUIRE((sim.particles().phase_of(0) == Phase::Water));
+    sim.particles().v[0] = Vec<2>(speed, 0.0);
+    BOOST_TEST_CONTEXT("speed " << speed << " m/s") {
+      if (speed < 1e3) {
+        BOOST_CHECK_NO_THROW(sim.step());
+        continue;
+      }
+      try {
+        sim.step();
+        BOOST_ERROR("no blow-up");
+      } catch (const BlowUpError& e) {
+        BOOST_TEST(e.step() == 2);
+        BOOST_TEST(e.particle() == 0);
+        BOOST_TEST(std::string(e.what()).find("field 'velocity': a speed of 1e+06 m/s") != std::string::npos, e.what());
+        BOOST_TEST(sim.particles().v[0][0] == speed);  // the last good state, from before the step
+      }
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

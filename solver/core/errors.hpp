@@ -42,18 +42,22 @@ class BlowUpError : public std::runtime_error {
 };
 
 /// The shortest step, as a fraction of the case's step, that a method whose step follows a CFL
-/// condition (MPM's substeps, FLIP's steps) may take. Speeds running away shrink such a step without
-/// end, and the run would stall, or overflow its count of substeps, instead of stopping.
+/// condition (MPM's substeps, FLIP's and SPH's steps) may take. Speeds running away shrink such a
+/// step without end, and the run would stall, or overflow its count of substeps, instead of stopping.
 inline constexpr double kShortestStepFraction = 1e-4;
 
-/// The blow-up of a step that the speed of `particle` shrank to `stable`, below kShortestStepFraction
-/// of the case's step `nominal`.
-inline BlowUpError collapsed_step(long step, double time, long particle, std::string phase, double speed,
-                                  double stable, double nominal) {
+/// The blow-up of a step that the fastest particle's speed shrank to `stable`, below
+/// kShortestStepFraction of the case's step `nominal`. `v`: the particles' velocities (vectors with
+/// squaredNorm and norm); `is_sand(i)`: whether particle i is sand (the diagnostic's phase).
+template <class Velocities, class IsSand>
+BlowUpError collapsed_step(long step, double time, const Velocities& v, IsSand is_sand, double stable, double nominal) {
+  long fastest = 0;
+  for (long i = 1; i < static_cast<long>(v.size()); ++i)
+    if (v[i].squaredNorm() > v[fastest].squaredNorm()) fastest = i;
   char what[200];
   std::snprintf(what, sizeof what, "a speed of %.3g m/s shrinks the stable step to %.3g s, below %g of the case's step (%g s)",
-                speed, stable, kShortestStepFraction, nominal);
-  return BlowUpError(step, time, particle, std::move(phase), "v", what);
+                v.empty() ? 0.0 : v[fastest].norm(), stable, kShortestStepFraction, nominal);
+  return BlowUpError(step, time, fastest, is_sand(fastest) ? "sand" : "water", "v", what);
 }
 
 /// An error on one rank of a run over several MPI ranks, made known to every rank (Comm::agree) so

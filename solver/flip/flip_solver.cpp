@@ -114,9 +114,7 @@ template <int D>
 double FlipSolver<D>::step() {
   const double dt = next_dt();
   if (!(dt >= kShortestStepFraction * params_.dt_max)) {
-    const auto fastest = std::ranges::max_element(ps_.v, {}, [](const Vec<D>& u) { return u.squaredNorm(); }) - ps_.v.begin();
-    throw collapsed_step(steps_ + 1, time_, fastest, ps_.is_sand(fastest) ? "sand" : "water", ps_.v[fastest].norm(), dt,
-                         params_.dt_max);
+    throw collapsed_step(steps_ + 1, time_, ps_.v, [&](long i) { return ps_.is_sand(i); }, dt, params_.dt_max);
   }
   {
     auto scope = timers_.time(FlipStage::Transfer);

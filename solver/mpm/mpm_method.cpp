@@ -147,11 +147,9 @@ double MpmMethod<D>::step() {
   const double stable = solver_.stable_step();
   if (!(stable >= kShortestStepFraction * dt_)) {
     const mpm::Particles<D>& ps = solver_.particles();
-    const auto fastest = std::ranges::max_element(ps.v, {}, [](const Vec<D>& u) { return u.squaredNorm(); }) - ps.v.begin();
-    throw collapsed_step(steps_ + 1, solver_.time(), fastest, ps.is_sand(fastest) ? "sand" : "water", ps.v[fastest].norm(),
-                         stable, dt_);
+    throw collapsed_step(steps_ + 1, solver_.time(), ps.v, [&](long i) { return ps.is_sand(i); }, stable, dt_);
   }
-  substeps_ += solver_.advance(dt_);
+  substeps_ += solver_.advance(dt_, stable);
   check_state();
   ++steps_;
   return dt_;

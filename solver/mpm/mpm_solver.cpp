@@ -60,8 +60,8 @@ double MpmSolver<D>::stable_step() const {
 }
 
 template <int D>
-int MpmSolver<D>::advance(double dt) {
-  const int n = std::max(1, static_cast<int>(std::ceil(dt / stable_step() - 1e-9)));
+int MpmSolver<D>::advance(double dt, double stable) {
+  const int n = std::max(1, static_cast<int>(std::ceil(dt / stable - 1e-9)));
   for (int s = 0; s < n; ++s) substep(dt / n);
   return n;
 }

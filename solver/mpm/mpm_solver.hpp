@@ -58,8 +58,10 @@ class MpmSolver {
  public:
   MpmSolver(Params<D> params, Particles<D> particles);
 
-  /// Advances by dt in equal substeps no longer than stable_step(); returns the substep count.
-  int advance(double dt);
+  /// Advances by dt in equal substeps no longer than `stable` (stable_step() of the current state,
+  /// when the caller has it already); returns the substep count.
+  int advance(double dt, double stable);
+  int advance(double dt) { return advance(dt, stable_step()); }
   /// One MPM step of size dt: stresses, particle-to-grid, grid update and exchange, grid-to-particle
   /// with the deformation update and the return mapping.
   void substep(double dt);

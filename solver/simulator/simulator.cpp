@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "adaptive/density_blend.hpp"
@@ -107,12 +108,16 @@ double Simulator<D>::stable_dt() const {
     amax = m[2];
   }
   if (!std::isfinite(hmin)) return params_.dt_max;
-  double dt = params_.dt_max;
-  dt = std::min(dt, params_.cfl * hmin / (params_.eos.sound_speed + vmax));
-  if (amax > 0.0) dt = std::min(dt, 0.25 * std::sqrt(hmin / amax));
+  double dt = std::min(params_.dt_max, motion_limit(hmin, vmax, amax));
   if (params_.water.viscosity > 0.0)
     dt = std::min(dt, 0.125 * hmin * hmin * params_.water.rest_density / params_.water.viscosity);
   return dt;
+}
+
+template <int D>
+double Simulator<D>::motion_limit(double spacing, double speed, double acceleration) const {
+  const double cfl = params_.cfl * spacing / (params_.eos.sound_speed + speed);
+  return acceleration > 0.0 ? std::min(cfl, 0.25 * std::sqrt(spacing / acceleration)) : cfl;
 }
 
 template <int D>
@@ -340,6 +345,20 @@ std::optional<StateError> Simulator<D>::state_error(std::size_t i) const {
   if (params_.density_window > 0.0 && ps_.moves(i) && steps_ > 0 &&
       std::abs(ps_.rho[i] / ps_.rho0[i] - 1.0) > params_.density_window)
     return StateError{"density", "outside the configured window |rho/rho0 - 1| <= " + std::to_string(params_.density_window)};
+  if (params_.cfl > 0.0 && ps_.moves(i) && !(dd_ && dd_->is_halo(i))) {
+    // A runaway speed or force: the next step would shrink without end, and the run stall.
+    const double spacing = ps_.h[i] / params_.support_ratio, speed = ps_.v[i].norm();
+    const double acceleration = ps_.force[i].norm() / ps_.m[i];
+    const double limit = motion_limit(spacing, speed, acceleration);
+    if (!(limit >= kShortestStepFraction * params_.dt_max)) {
+      const bool by_speed = limit == motion_limit(spacing, speed, 0.0);
+      char what[200];
+      std::snprintf(what, sizeof what, "%s of %.3g %s shrinks the stable step to %.3g s, below %g of the case's step (%g s)",
+                    by_speed ? "a speed" : "an acceleration", by_speed ? speed : acceleration, by_speed ? "m/s" : "m/s^2",
+                    limit, kShortestStepFraction, params_.dt_max);
+      return StateError{by_speed ? "velocity" : "force", what};
+    }
+  }
   return std::nullopt;
 }
 

@@ -128,8 +128,13 @@ class Simulator {
   /// Overwrites the halo's values of `field` with their owners' (decomposed runs; else nothing).
   template <class Field>
   void refresh_halo(Field& field);
-  /// What is wrong with particle i, if anything.
+  /// What is wrong with particle i, if anything: a field not finite, a position outside the domain,
+  /// a density outside the window, or (with a CFL step) a speed or acceleration that alone would
+  /// shrink the next step below kShortestStepFraction of dt_max (core/errors.hpp).
   std::optional<StateError> state_error(std::size_t i) const;
+  /// The longest step that the CFL and force conditions allow a particle of this spacing, speed
+  /// and acceleration (stable_dt takes it over the particles).
+  double motion_limit(double spacing, double speed, double acceleration) const;
 
   /// last_good_ ← ps_ at the start of a step: only what a step can change (refresh_from) when
   /// last_good_ holds the start of the previous step and nothing but that step changed ps_ since;
