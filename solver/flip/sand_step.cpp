@@ -204,12 +204,15 @@ RigidFit<D> fit_rigid_motion(const MacGrid<D>& grid, const std::vector<GroupFace
   for (const auto& f : faces) {
     const Vec<D> r = grid.face_centre(f.axis, MacGrid<D>::unflat(f.index, grid.face_dims(f.axis))) - centre;
     const Vec<D> e = Vec<D>::Unit(f.axis);
-    Eigen::Matrix<double, K, 1> J;
-    J << e, moment<D>(r, e);
+    Eigen::Matrix<double, K, 1> J;  // fixed-size halves: GCC 12 warns (-Warray-bounds) on the comma initialiser's AVX path
+    J.template head<D>() = e;
+    J.template tail<angular_dim<D>>() = moment<D>(r, e);
     A += f.mass * J * J.transpose();
     b += f.mass * u[f.axis][f.index] * J;
   }
-  const Eigen::Matrix<double, K, 1> q = Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, K, K>>(A).solve(b);
+  // The right-hand side of dynamic size: with a fixed 3-vector (D = 2), GCC 12 warns (-Warray-bounds)
+  // on a 4-wide AVX load in Eigen's triangular solve, a branch taken only for 4 or more rows.
+  const Eigen::VectorXd q = Eigen::CompleteOrthogonalDecomposition<Eigen::Matrix<double, K, K>>(A).solve(Eigen::VectorXd(b));
   RigidFit<D> fit;
   fit.centre = centre;
   fit.velocity = q.template head<D>();
