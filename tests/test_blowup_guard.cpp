@@ -79,9 +79,9 @@ BOOST_AUTO_TEST_CASE(last_good_is_the_state_before_the_step) {
 
 // A speed that runs away shrinks the CFL step without end; the run must stop as a blow-up
 // (core/errors.hpp kShortestStepFraction) instead of stalling. Particle 0 (the first moving one in
-// storage, a water particle of the dam) is set to 1e6 m/s after one ordinary step: its next step
-// would be 0.4 (0.01 m) / (1e6 m/s) = 4e-9 s, below 1e-4 of the case's 1 ms. At 100 m/s (3.5e-5 s)
-// the step runs.
+// storage, a water particle of the dam) is set to 1e6 m/s after one ordinary step: the next step
+// would be 0.4 (0.01 m) / (1e6 m/s) = 4e-9 s, below 1e-4 of the case's 1 ms, so step 2 stops before
+// it moves anything. At 100 m/s (3.5e-5 s) the step runs.
 BOOST_AUTO_TEST_CASE(a_runaway_speed_stops_the_step_as_a_blow_up) {
   const CaseSpec spec = load_case(std::string(SANDCASTLE_SOURCE_DIR) + "/tests/reliability/small_dam_break.json");
   const double dx = spec.tiers.at("quick").spacings.front();

@@ -69,7 +69,7 @@ Simulator<D>::Simulator(ParticleSet<D> particles, SimulationParams params, std::
   for (std::size_t i = 0; i < ps_.size(); ++i) has_sand_ = has_sand_ || ps_.phase_of(i) == Phase::Sand;
   if (params_.tank && params_.tank->collision) tank_walls_ = TankWalls<D>::from_tank(*params_.tank, params_.tank_wall_thickness);
   last_dt_ = params_.dt_max;
-  check_state();
+  throw_first_error([&](std::size_t i) { return state_error(i); });  // the scene as built (before any scatter)
   if (!ranks || ranks->size() == 1) return;
   dd_.emplace(*ranks);
   dd_->scatter(ps_);
@@ -84,8 +84,7 @@ void Simulator<D>::refresh_halo(Field& field) {
 }
 
 template <int D>
-double Simulator<D>::stable_dt() const {
-  if (params_.cfl <= 0.0) return params_.dt_max;
+typename Simulator<D>::MotionScales Simulator<D>::motion_scales() const {
   // Length scale: the particle spacing h_i / support_ratio, not the kernel support, so the limits
   // do not loosen when a case chooses a wider support. It is taken from the support, not from the
   // mass ((m/ρ0)^(1/D)): a water particle being absorbed keeps its support while its mass goes to
@@ -107,8 +106,16 @@ double Simulator<D>::stable_dt() const {
     vmax = m[1];
     amax = m[2];
   }
+  return {hmin, vmax, amax};
+}
+
+template <int D>
+double Simulator<D>::stable_dt() const {
+  if (params_.cfl <= 0.0) return params_.dt_max;
+  const MotionScales scales = motion_scales();
+  const double hmin = scales.spacing;
   if (!std::isfinite(hmin)) return params_.dt_max;
-  double dt = std::min(params_.dt_max, motion_limit(hmin, vmax, amax));
+  double dt = std::min(params_.dt_max, motion_limit(hmin, scales.speed, scales.acceleration));
   if (params_.water.viscosity > 0.0)
     dt = std::min(dt, 0.125 * hmin * hmin * params_.water.rest_density / params_.water.viscosity);
   return dt;
@@ -258,6 +265,10 @@ double Simulator<D>::step() {
   }
   compute_forces();
   const double dt = stable_dt();
+  if (!(dt >= kShortestStepFraction * params_.dt_max)) {  // rare: the motion scales again
+    const MotionScales scales = motion_scales();
+    check([&](std::size_t i) { return runaway(i, scales); });
+  }
   if (has_sand_) {
     {
       auto tf = timers_.time(Stage::Forces);
@@ -282,15 +293,7 @@ double Simulator<D>::step() {
   } else {
     ps_.compact();
   }
-  try {
-    if (dd_) check_state_over_ranks();
-    else check_state();
-  } catch (const BlowUpError&) {
-    ps_ = last_good_;
-    if (dd_) dd_->restore_last_good_keys();
-    guard_synced_ = false;
-    throw;
-  }
+  check([&](std::size_t i) { return state_error(i); });
   guard_synced_ = true;
   time_ += dt;
   ++steps_;
@@ -345,44 +348,61 @@ std::optional<StateError> Simulator<D>::state_error(std::size_t i) const {
   if (params_.density_window > 0.0 && ps_.moves(i) && steps_ > 0 &&
       std::abs(ps_.rho[i] / ps_.rho0[i] - 1.0) > params_.density_window)
     return StateError{"density", "outside the configured window |rho/rho0 - 1| <= " + std::to_string(params_.density_window)};
-  if (params_.cfl > 0.0 && ps_.moves(i) && !(dd_ && dd_->is_halo(i))) {
-    // A runaway speed or force: the next step would shrink without end, and the run stall.
-    const double spacing = ps_.h[i] / params_.support_ratio, speed = ps_.v[i].norm();
-    const double acceleration = ps_.force[i].norm() / ps_.m[i];
-    const double limit = motion_limit(spacing, speed, acceleration);
-    if (!(limit >= kShortestStepFraction * params_.dt_max)) {
-      const bool by_speed = limit == motion_limit(spacing, speed, 0.0);
-      char what[200];
-      std::snprintf(what, sizeof what, "%s of %.3g %s shrinks the stable step to %.3g s, below %g of the case's step (%g s)",
-                    by_speed ? "a speed" : "an acceleration", by_speed ? speed : acceleration, by_speed ? "m/s" : "m/s^2",
-                    limit, kShortestStepFraction, params_.dt_max);
-      return StateError{by_speed ? "velocity" : "force", what};
-    }
-  }
   return std::nullopt;
 }
 
 template <int D>
-std::size_t Simulator<D>::first_error() const {
+std::optional<StateError> Simulator<D>::runaway(std::size_t i, const MotionScales& scales) const {
+  if (!ps_.moves(i) || (dd_ && dd_->is_halo(i))) return std::nullopt;
+  const double speed = ps_.v[i].norm(), acceleration = ps_.force[i].norm() / ps_.m[i];
+  const double limit = motion_limit(scales.spacing, speed, acceleration);
+  if (limit >= kShortestStepFraction * params_.dt_max) return std::nullopt;
+  const bool by_speed = limit == motion_limit(scales.spacing, speed, 0.0);
+  char what[200];
+  std::snprintf(what, sizeof what, "%s of %.3g %s shrinks the stable step to %.3g s, below %g of the case's step (%g s)",
+                by_speed ? "a speed" : "an acceleration", by_speed ? speed : acceleration, by_speed ? "m/s" : "m/s^2",
+                limit, kShortestStepFraction, params_.dt_max);
+  return StateError{by_speed ? "velocity" : "force", what};
+}
+
+template <int D>
+template <class ErrorOf>
+std::size_t Simulator<D>::first_error(ErrorOf error_of) const {
   const auto n = static_cast<std::int64_t>(ps_.size());
   std::int64_t first = n;  // the lowest offending index, whatever the number of threads
 #pragma omp parallel for schedule(static) reduction(min : first)
   for (std::int64_t i = 0; i < n; ++i)
-    if (i < first && state_error(i)) first = i;
+    if (i < first && error_of(i)) first = i;
   return static_cast<std::size_t>(first);
 }
 
 template <int D>
-void Simulator<D>::check_state() const {
-  const std::size_t first = first_error();
+template <class ErrorOf>
+void Simulator<D>::check(ErrorOf error_of) {
+  try {
+    if (dd_) throw_first_error_over_ranks(error_of);
+    else throw_first_error(error_of);
+  } catch (const BlowUpError&) {
+    ps_ = last_good_;
+    if (dd_) dd_->restore_last_good_keys();
+    guard_synced_ = false;
+    throw;
+  }
+}
+
+template <int D>
+template <class ErrorOf>
+void Simulator<D>::throw_first_error(ErrorOf error_of) const {
+  const std::size_t first = first_error(error_of);
   if (first == ps_.size()) return;
-  const StateError e = *state_error(first);
+  const StateError e = *error_of(first);
   throw BlowUpError(steps_ + 1, time_, static_cast<long>(first), std::string(phase_name(ps_.phase_of(first))), e.field, e.what);
 }
 
 template <int D>
-void Simulator<D>::check_state_over_ranks() const {
-  const std::size_t n = ps_.size(), first = first_error();
+template <class ErrorOf>
+void Simulator<D>::throw_first_error_over_ranks(ErrorOf error_of) const {
+  const std::size_t n = ps_.size(), first = first_error(error_of);
   // Keys follow the index on each rank, and a key is the particle's index in the one-process run.
   std::array<std::uint64_t, 1> key = {first < n ? dd_->key(first) : UINT64_MAX};
   dd_->comm().min(key);
@@ -392,7 +412,7 @@ void Simulator<D>::check_state_over_ranks() const {
   dd_->comm().min(root);
   std::string what;
   if (mine) {
-    const StateError e = *state_error(first);
+    const StateError e = *error_of(first);
     what = std::string(phase_name(ps_.phase_of(first))) + '\n' + e.field + '\n' + e.what;
   }
   what = dd_->comm().broadcast(what, static_cast<int>(root[0]));

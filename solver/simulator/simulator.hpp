@@ -118,23 +118,38 @@ class Simulator {
   void adapt();
   /// adapt() over MPI ranks: the pass on the gathered whole scene, then this rank's share of it.
   void adapt_over_ranks();
-  /// Throws BlowUpError naming the first offending particle (lowest index; decomposed: lowest key,
-  /// its index in the one-process run, on every rank).
-  void check_state() const;
-  /// check_state over the ranks of the decomposition.
-  void check_state_over_ranks() const;
-  /// The lowest index of an offending particle (size() if none).
-  std::size_t first_error() const;
+  /// If `error_of` (particle index → std::optional<StateError>) finds a particle wrong: puts the
+  /// last good state back and throws BlowUpError naming the first one (lowest index; decomposed:
+  /// lowest key, its index in the one-process run, on every rank).
+  template <class ErrorOf>
+  void check(ErrorOf error_of);
+  template <class ErrorOf>
+  void throw_first_error(ErrorOf error_of) const;
+  template <class ErrorOf>
+  void throw_first_error_over_ranks(ErrorOf error_of) const;
+  /// The lowest index of a particle that `error_of` finds wrong (size() if none).
+  template <class ErrorOf>
+  std::size_t first_error(ErrorOf error_of) const;
   /// Overwrites the halo's values of `field` with their owners' (decomposed runs; else nothing).
   template <class Field>
   void refresh_halo(Field& field);
   /// What is wrong with particle i, if anything: a field not finite, a position outside the domain,
-  /// a density outside the window, or (with a CFL step) a speed or acceleration that alone would
-  /// shrink the next step below kShortestStepFraction of dt_max (core/errors.hpp).
+  /// a density outside the window.
   std::optional<StateError> state_error(std::size_t i) const;
+
+  /// The smallest spacing and the largest speed and acceleration of the moving particles (over the
+  /// ranks, exact): what the CFL and force conditions of the step size read.
+  struct MotionScales {
+    double spacing = INFINITY, speed = 0.0, acceleration = 0.0;
+  };
+  MotionScales motion_scales() const;
   /// The longest step that the CFL and force conditions allow a particle of this spacing, speed
-  /// and acceleration (stable_dt takes it over the particles).
+  /// and acceleration.
   double motion_limit(double spacing, double speed, double acceleration) const;
+  /// What is wrong with particle i when the motion limit of `scales` is below kShortestStepFraction
+  /// of dt_max (core/errors.hpp): a speed or acceleration of its own that, at the smallest spacing,
+  /// shrinks the step that far (speeds or forces running away: the run would stall, not stop).
+  std::optional<StateError> runaway(std::size_t i, const MotionScales& scales) const;
 
   /// last_good_ ← ps_ at the start of a step: only what a step can change (refresh_from) when
   /// last_good_ holds the start of the previous step and nothing but that step changed ps_ since;
