@@ -507,6 +507,49 @@ BOOST_AUTO_TEST_CASE(partial_water_is_held_off_solid_walls_only) {
   for (std::size_t w = 0; w < 3; ++w) BOOST_TEST(ps.force[w].norm() == 0.0);  // walls take no reaction
 }
 
+BOOST_AUTO_TEST_CASE(the_wall_push_that_bounds_friction_is_the_whole_force_of_rough_walls) {
+  // Coulomb wall friction (add_wall_friction) is bounded by mu times the push of the rough walls on
+  // a grain: their pressure force (eq 4) and their contact force together. A grain whose only
+  // neighbours are wall particles gets from add_sand_forces exactly that push, so wall_force must
+  // equal the force added; at a smooth wall the same force is there, but no friction push.
+  const double dx = 0.01;
+  for (const bool rough : {true, false}) {
+    ParticleSet<2> ps;
+    for (int k = -3; k <= 3; ++k) {
+      const std::size_t w = ps.append();
+      ps.x[w] = Vec<2>(k * dx, 0.0);
+      ps.m[w] = 1000.0 * dx * dx;
+      ps.h[w] = 2.0 * dx;
+      ps.rho[w] = ps.rho0[w] = 1000.0;
+      ps.p[w] = 400.0;
+      ps.rough[w] = rough ? 1 : 0;
+      ps.phase[w] = static_cast<std::uint8_t>(Phase::Boundary);
+    }
+    const std::size_t i = ps.append();
+    ps.x[i] = Vec<2>(0.3 * dx, 0.6 * dx);  // 0.67 dx from the nearest wall particle: in contact
+    ps.v[i] = Vec<2>(0.2, -0.1);
+    ps.m[i] = 2650.0 * dx * dx;
+    ps.h[i] = 2.0 * dx;
+    ps.rho[i] = ps.rho0[i] = 2650.0;
+    ps.p[i] = 900.0;
+    ps.phase[i] = static_cast<std::uint8_t>(Phase::Sand);
+    NeighbourGrid<2> nb;
+    nb.rebuild(ps);
+    SandParams sand;
+    WaterParams water;
+    water.viscosity = 0.2;
+    MatArray<2> correction;
+    compute_gradient_corrections(ps, nb, correction);
+    VecArrayOf<2> wall;
+    add_sand_forces(ps, nb, sand, water, 20.0, 1e-4, correction, wall);
+    BOOST_TEST_CONTEXT((rough ? "rough" : "smooth") << " wall") {
+      BOOST_TEST(ps.force[i][1] > 0.0);  // pushed off the wall
+      if (rough) BOOST_TEST((wall[i] - ps.force[i]).norm() <= 1e-12 * ps.force[i].norm());
+      else BOOST_TEST(wall[i].norm() == 0.0);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(bell_contact_is_antisymmetric_and_dissipative) {
   // Bell et al. 2005 contact: f_ij = −f_ji; for a head-on approach the damping makes the rebound
   // slower than the approach (restitution < 1).
