@@ -288,6 +288,37 @@ BOOST_AUTO_TEST_CASE(sphere_slipping_on_rough_floor_rolls_at_five_sevenths, *tes
   BOOST_TEST(std::abs(-g.omega[0][2] * R / u0 / (5.0 / 7.0) - 1.0) < 1e-2);
 }
 
+// A smooth wall (Plane::rough false) has no friction whatever wall_friction says: a sphere sliding
+// on it keeps its speed and takes no spin, bitwise. On the same floor made rough it slows at the
+// Coulomb rate mu g while it still slips (up to t = 2/7 u0/(mu g) = 14.6 ms), within 1e-2 at 10 ms.
+BOOST_AUTO_TEST_CASE(a_smooth_wall_has_no_friction) {
+  for (const bool rough : {false, true}) {
+    Grains<3> g;
+    const double R = 0.5e-3, u0 = 0.1, mu = 0.2, t_end = 0.01;
+    g.add(Vec<3>(0.0, R, 0.0), R, 1e4);
+    Params p;
+    p.stiffness = 1e4;
+    p.damping = damping_for_restitution(0.5, p.stiffness, g.mass(0));
+    p.wall_friction = mu;
+    const double dt = stable_step(g, p) / 10.0;
+    p.tangential_damping = 0.0;
+    g.v[0] = Vec<3>(u0, 0.0, 0.0);
+    g.x[0][1] = R - g.mass(0) * g0 / p.stiffness;  // resting on its spring
+    const std::vector<Plane<3>> floor{{Vec<3>::Zero(), Vec<3>(0, 1, 0), rough}};
+    Contacts<3> grid;
+    const long steps = std::lround(t_end / dt);
+    for (long s = 0; s < steps; ++s) step(g, grid, p, Vec<3>(0.0, -g0, 0.0), std::span<const Plane<3>>(floor), dt);
+    BOOST_TEST_CONTEXT((rough ? "rough" : "smooth") << " floor") {
+      if (!rough) {
+        BOOST_TEST(g.v[0][0] == u0);
+        BOOST_TEST(g.omega[0].norm() == 0.0);
+      } else {
+        BOOST_TEST((u0 - g.v[0][0]) / (mu * g0 * steps * dt) == 1.0, boost::test_tools::tolerance(1e-2));
+      }
+    }
+  }
+}
+
 // Rolling resistance [Ai et al. 2011: rolling model C] of a sphere resting on a frictionless floor
 // (no tangential force, so only the rolling torque acts on its spin ω about the rolling axis):
 // - below the bound the rolling spring k_r = 2.25 k μ_r² R² makes a torsional oscillator,
