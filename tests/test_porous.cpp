@@ -113,9 +113,12 @@ BOOST_AUTO_TEST_CASE(saturation_eq_21_full_pores_and_clamp) {
 }
 
 BOOST_AUTO_TEST_CASE(capillary_potential_eq_23_limits_and_monotone) {
-  // [thesis eq. 23] P^c(1) = 0, P^c(0) = k^c, decreasing in S.
+  // [thesis eq. 23] P^c(1) = 0, P^c(0) = k^c, decreasing in S; between, k^c (1 − S)^α:
+  // 2 (1/4)^(1/2) = 1 and 15000 (1/2)^0.1 = 13995.495 (hand values).
   BOOST_TEST(capillary_potential(1.0, 15000.0, 0.1) == 0.0);
   BOOST_TEST(capillary_potential(0.0, 15000.0, 0.1) == 15000.0);
+  BOOST_TEST(capillary_potential(0.75, 2.0, 0.5) == 1.0, boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(capillary_potential(0.5, 15000.0, 0.1) == 13995.495, boost::test_tools::tolerance(1e-7));
   double prev = INFINITY;
   for (int k = 0; k <= 100; ++k) {
     const double pc = capillary_potential(k / 100.0, 15000.0, 0.1);

@@ -131,6 +131,20 @@ BOOST_AUTO_TEST_CASE(particle_over_the_rim_of_an_open_tank_is_left_alone) {
   BOOST_TEST(collide_with_tank(outside, walls, start) == 0);
 }
 
+BOOST_AUTO_TEST_CASE(particle_crossing_a_side_wall_below_the_rim_is_stopped_though_it_ends_above) {
+  // From (0.995, 0.990) at (10, 15) m/s for 1 ms the particle crosses the x+ wall's plane halfway,
+  // at y = 0.9975, below the rim (y = 1), and would end at (1.005, 1.005), above it: the crossing
+  // point, not the end point, decides. It is put on the wall (slip: the normal velocity stops).
+  const auto walls = TankWalls<2>::from_tank(open_tank(), 0.02);
+  ParticleSet<2>::VecArray start;
+  ParticleSet<2> ps = moved_particle(Vec<2>(0.995, 0.990), Vec<2>(10.0, 15.0), 0.001, start);
+  BOOST_TEST(ps.x[0][1] > 1.0);
+  BOOST_TEST(collide_with_tank(ps, walls, start) == 1);
+  BOOST_TEST(ps.x[0][0] == 1.0);
+  BOOST_TEST(ps.v[0][0] == 0.0);
+  BOOST_TEST(ps.v[0][1] == 15.0);
+}
+
 BOOST_AUTO_TEST_CASE(thrown_particle_never_leaves_a_slip_box_and_only_loses_energy) {
   // A lone water particle (no wall particles: the collision alone holds it) thrown at 20 m/s down and
   // sideways in a 2-D tank with slip walls under gravity: at every step it is inside the tank, its
