@@ -261,18 +261,34 @@ BOOST_AUTO_TEST_CASE(sphere_rolls_or_slides_on_45_degree_incline) {
 // A sphere launched sliding at u0 without spin on a rough floor (MFIX DEM04, docs/references.md §12):
 // friction μ m g slows it and spins it up until it rolls, at μ g t/u0 = 2/7 with v = ωR = 5/7 u0,
 // both within 1 %.
-BOOST_AUTO_TEST_CASE(sphere_slipping_on_rough_floor_rolls_at_five_sevenths, *test::long_run()) {
+namespace {
+
+/// A sphere of radius R = 0.5 mm (density 1e4) resting on its spring on the floor y = 0 and sliding
+/// along x at u0 = 0.1 m/s, wall friction mu = 0.2, no tangential damping; dt a tenth of the stable step.
+struct SlidingSphere {
+  static constexpr double R = 0.5e-3, u0 = 0.1, mu = 0.2;
   Grains<3> g;
-  const double R = 0.5e-3, u0 = 0.1, mu = 0.2;
-  g.add(Vec<3>(0.0, R, 0.0), R, 1e4);
   Params p;
-  p.stiffness = 1e4;
-  p.damping = damping_for_restitution(0.5, p.stiffness, g.mass(0));
-  p.wall_friction = mu;
-  const double dt = stable_step(g, p) / 10.0;
-  p.tangential_damping = 0.0;
-  g.v[0] = Vec<3>(u0, 0.0, 0.0);
-  g.x[0][1] = R - g.mass(0) * g0 / p.stiffness;  // resting on its spring
+  double dt = 0.0;
+  SlidingSphere() {
+    g.add(Vec<3>(0.0, R, 0.0), R, 1e4);
+    p.stiffness = 1e4;
+    p.damping = damping_for_restitution(0.5, p.stiffness, g.mass(0));
+    p.wall_friction = mu;
+    dt = stable_step(g, p) / 10.0;
+    p.tangential_damping = 0.0;
+    g.v[0] = Vec<3>(u0, 0.0, 0.0);
+    g.x[0][1] = R - g.mass(0) * g0 / p.stiffness;  // resting on its spring
+  }
+};
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(sphere_slipping_on_rough_floor_rolls_at_five_sevenths, *test::long_run()) {
+  SlidingSphere s;
+  const double R = SlidingSphere::R, u0 = SlidingSphere::u0, mu = SlidingSphere::mu, dt = s.dt;
+  Grains<3>& g = s.g;
+  const Params& p = s.p;
   const std::vector<Plane<3>> floor{{Vec<3>::Zero(), Vec<3>(0, 1, 0)}};
   Contacts<3> grid;
   double t = 0.0, t_roll = -1.0;
@@ -293,21 +309,13 @@ BOOST_AUTO_TEST_CASE(sphere_slipping_on_rough_floor_rolls_at_five_sevenths, *tes
 // Coulomb rate mu g while it still slips (up to t = 2/7 u0/(mu g) = 14.6 ms), within 1e-2 at 10 ms.
 BOOST_AUTO_TEST_CASE(a_smooth_wall_has_no_friction) {
   for (const bool rough : {false, true}) {
-    Grains<3> g;
-    const double R = 0.5e-3, u0 = 0.1, mu = 0.2, t_end = 0.01;
-    g.add(Vec<3>(0.0, R, 0.0), R, 1e4);
-    Params p;
-    p.stiffness = 1e4;
-    p.damping = damping_for_restitution(0.5, p.stiffness, g.mass(0));
-    p.wall_friction = mu;
-    const double dt = stable_step(g, p) / 10.0;
-    p.tangential_damping = 0.0;
-    g.v[0] = Vec<3>(u0, 0.0, 0.0);
-    g.x[0][1] = R - g.mass(0) * g0 / p.stiffness;  // resting on its spring
+    SlidingSphere s;
+    const double u0 = SlidingSphere::u0, mu = SlidingSphere::mu, dt = s.dt;
+    Grains<3>& g = s.g;
     const std::vector<Plane<3>> floor{{Vec<3>::Zero(), Vec<3>(0, 1, 0), rough}};
     Contacts<3> grid;
-    const long steps = std::lround(t_end / dt);
-    for (long s = 0; s < steps; ++s) step(g, grid, p, Vec<3>(0.0, -g0, 0.0), std::span<const Plane<3>>(floor), dt);
+    const long steps = std::lround(0.01 / dt);
+    for (long k = 0; k < steps; ++k) step(g, grid, s.p, Vec<3>(0.0, -g0, 0.0), std::span<const Plane<3>>(floor), dt);
     BOOST_TEST_CONTEXT((rough ? "rough" : "smooth") << " floor") {
       if (!rough) {
         BOOST_TEST(g.v[0][0] == u0);
