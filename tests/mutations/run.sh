@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # Mutation check: applies each small physics mutation of tests/mutations/mutations.tsv (a sign, a
 # factor, an index, a dropped term) to a scratch git worktree of HEAD, builds, and runs the unit
-# tests (every CTest unit suite, two at a time, stopping at the first failure); a mutation the unit
-# tests miss then meets the quick validation tier (its gates and the regression limits of the
-# blessed baselines). It reports whether the mutation was caught (build error, failing test, failed
-# gate or regression) and by what, or that it survived. Not part of CI: one build per mutation.
+# tests: first the suites the list names for the mutated code, then, if they pass, every CTest unit
+# suite (two at a time, stopping at the first failure); a mutation the unit tests miss then meets
+# the quick validation tier (its gates and the regression limits of the blessed baselines). It
+# reports whether the mutation was caught (build error, failing test, failed gate or regression)
+# and by what, or that it survived. Not part of CI: one build per mutation (ccache, where
+# installed, shortens the rebuilds).
 #
 # Usage: tests/mutations/run.sh [--only ID,ID,...] [--tests BOOST_RUN_TEST_FILTER] [--no-suite] [--timeout SECONDS]
 #   --tests     run only these unit tests (unit_tests --run_test filter) instead of every suite
@@ -31,12 +33,13 @@ cleanup() { git -C "$repo" worktree remove --force "$scratch/src" >/dev/null 2>&
 trap cleanup EXIT
 src="$scratch/src" build="$scratch/src/build"
 
+# The unit tests of the --run_test filter $1 (a mutation's own suites, or --tests).
+run_filter() {
+  (cd "$src" && timeout "$timeout_s" "$build/unit_tests" --run_test="$1" --log_level=nothing --report_level=no >/dev/null 2>&1)
+}
 run_tests() {
-  if [[ -n "$tests" ]]; then
-    (cd "$src" && timeout "$timeout_s" "$build/unit_tests" --run_test="$tests" --log_level=nothing --report_level=no >/dev/null 2>&1)
-  else
-    (cd "$build" && timeout "$timeout_s" ctest -L unit -j2 --stop-on-failure >/dev/null 2>&1)
-  fi
+  if [[ -n "$tests" ]]; then run_filter "$tests"
+  else (cd "$build" && timeout "$timeout_s" ctest -L unit -j2 --stop-on-failure >/dev/null 2>&1); fi
 }
 # The quick validation tier of the mutated code against the gates and the blessed baselines.
 run_suite() {
@@ -56,7 +59,7 @@ if [[ $suite -eq 1 ]]; then
 fi
 
 caught=0 survived=0 skipped=0 survivors=()
-while IFS=$'\t' read -r -u 3 id file from to; do
+while IFS=$'\t' read -r -u 3 id file from to own; do
   [[ -z "$id" || "$id" == \#* ]] && continue
   [[ -n "$only" && ",$only," != *",$id,"* ]] && continue
   if ! python3 - "$src/$file" "$from" "$to" <<'PY'
@@ -71,6 +74,7 @@ PY
     echo "SKIPPED   $id ($file: text not found exactly once)"; skipped=$((skipped + 1)); continue
   fi
   if ! build_tests; then verdict="CAUGHT    $id (does not build)"; caught=$((caught + 1))
+  elif [[ -z "$tests" && -n "$own" ]] && ! run_filter "$own"; then verdict="CAUGHT    $id (unit tests: $own)"; caught=$((caught + 1))
   elif ! run_tests; then verdict="CAUGHT    $id (unit tests)"; caught=$((caught + 1))
   elif [[ $suite -eq 1 ]] && ! run_suite; then verdict="CAUGHT    $id (quick tier)"; caught=$((caught + 1))
   else verdict="SURVIVED  $id"; survived=$((survived + 1)); survivors+=("$id"); fi
