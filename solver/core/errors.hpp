@@ -46,6 +46,15 @@ class BlowUpError : public std::runtime_error {
 /// step without end, and the run would stall, or overflow its count of substeps, instead of stopping.
 inline constexpr double kShortestStepFraction = 1e-4;
 
+/// Why a step collapsed: "<cause> of <value> <unit> shrinks the stable step to <stable> s, below
+/// kShortestStepFraction of the case's step (<nominal> s)", e.g. cause "a speed", unit "m/s".
+inline std::string collapsed_step_reason(const char* cause, double value, const char* unit, double stable, double nominal) {
+  char what[240];
+  std::snprintf(what, sizeof what, "%s of %.3g %s shrinks the stable step to %.3g s, below %g of the case's step (%g s)",
+                cause, value, unit, stable, kShortestStepFraction, nominal);
+  return what;
+}
+
 /// The blow-up of a step that the fastest particle's speed shrank to `stable`, below
 /// kShortestStepFraction of the case's step `nominal`. `v`: the particles' velocities (vectors with
 /// squaredNorm and norm); `is_sand(i)`: whether particle i is sand (the diagnostic's phase).
@@ -54,10 +63,9 @@ BlowUpError collapsed_step(long step, double time, const Velocities& v, IsSand i
   long fastest = 0;
   for (long i = 1; i < static_cast<long>(v.size()); ++i)
     if (v[i].squaredNorm() > v[fastest].squaredNorm()) fastest = i;
-  char what[200];
-  std::snprintf(what, sizeof what, "a speed of %.3g m/s shrinks the stable step to %.3g s, below %g of the case's step (%g s)",
-                v.empty() ? 0.0 : v[fastest].norm(), stable, kShortestStepFraction, nominal);
-  return BlowUpError(step, time, fastest, is_sand(fastest) ? "sand" : "water", "v", what);
+  const double speed = v.empty() ? 0.0 : v[fastest].norm();
+  return BlowUpError(step, time, fastest, is_sand(fastest) ? "sand" : "water", "v",
+                     collapsed_step_reason("a speed", speed, "m/s", stable, nominal));
 }
 
 /// An error on one rank of a run over several MPI ranks, made known to every rank (Comm::agree) so

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
 #include "adaptive/density_blend.hpp"
@@ -358,11 +357,9 @@ std::optional<StateError> Simulator<D>::runaway(std::size_t i, const MotionScale
   const double limit = motion_limit(scales.spacing, speed, acceleration);
   if (limit >= kShortestStepFraction * params_.dt_max) return std::nullopt;
   const bool by_speed = limit == motion_limit(scales.spacing, speed, 0.0);
-  char what[200];
-  std::snprintf(what, sizeof what, "%s of %.3g %s shrinks the stable step to %.3g s, below %g of the case's step (%g s)",
-                by_speed ? "a speed" : "an acceleration", by_speed ? speed : acceleration, by_speed ? "m/s" : "m/s^2",
-                limit, kShortestStepFraction, params_.dt_max);
-  return StateError{by_speed ? "velocity" : "force", what};
+  return StateError{by_speed ? "velocity" : "force",
+                    collapsed_step_reason(by_speed ? "a speed" : "an acceleration", by_speed ? speed : acceleration,
+                                          by_speed ? "m/s" : "m/s^2", limit, params_.dt_max)};
 }
 
 template <int D>
