@@ -1,5 +1,8 @@
-// First-order kernel-gradient correction (Bonet & Lok 1999), used to make the SPH pressure
-// gradient exact for linear fields in the interior.
+// First-order kernel-gradient correction (Bonet & Lok 1999): the SPH pressure gradient is exact
+// for linear fields where the smallest eigenvalue of a particle's moment matrix is at least 0.8,
+// and blends back to the uncorrected kernel below that (gradient_correction). A resting lattice
+// interior at h = 2 dx with the spiky density kernel lies inside the blend and is corrected only
+// in part (README, known limitation).
 #pragma once
 #include <algorithm>
 #include <array>
