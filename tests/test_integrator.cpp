@@ -64,6 +64,27 @@ BOOST_AUTO_TEST_CASE(linear_spring_matches_the_discrete_solution) {
   BOOST_TEST(x.tail<2>().norm() == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(start_up_damping_scales_the_new_velocity) {
+  // symplectic_euler_step with damping d under a constant force F (a = F/m): the recurrence
+  // v_{k+1} = d (v_k + Δt a), x_{k+1} = x_k + Δt v_{k+1} has the closed form v_n = dⁿ v_0 + Δt a S_n
+  // with S_n = d + … + dⁿ = d (1 − dⁿ)/(1 − d), and x_n = x_0 + Δt (S_n v_0 + Δt a Σ_{k=1..n} S_k),
+  // Σ S_k = d (n − S_n)/(1 − d). To round-off over 500 steps, for d < 1 (damped) and d = 1 (free
+  // fall: S_n = n, Σ S_k = n(n + 1)/2).
+  const double m = 0.3, dt = 2e-3;
+  const Vec<2> F(0.6, -2.943), a = F / m, x0(0.1, 1.0), v0(-0.4, 0.7);
+  const int n = 500;
+  for (const double d : {0.99, 1.0}) {
+    Vec<2> x = x0, v = v0;
+    for (int k = 0; k < n; ++k) symplectic_euler_step<2>(x, v, F, m, dt, d);
+    const double S = d < 1.0 ? d * (1.0 - std::pow(d, n)) / (1.0 - d) : n;
+    const double sum_S = d < 1.0 ? d * (n - S) / (1.0 - d) : n * (n + 1) / 2.0;
+    const Vec<2> v_exact = std::pow(d, n) * v0 + dt * S * a;
+    const Vec<2> x_exact = x0 + dt * (S * v0 + dt * sum_S * a);
+    BOOST_TEST((v - v_exact).norm() <= 1e-12 * v_exact.norm());
+    BOOST_TEST((x - x_exact).norm() <= 1e-12 * x_exact.norm());
+  }
+}
+
 BOOST_AUTO_TEST_CASE(cluster_sums_eqs_13_14_carry_an_external_load) {
   // [thesis eq. 13] [thesis eq. 14] on a random cluster with internal central pair forces, gravity
   // and one external point load P at member q: F_cluster = M g + P and τ_cluster = (x_q − x_cm) × P,
