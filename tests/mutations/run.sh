@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Mutation check: applies each small physics mutation of tests/mutations/mutations.tsv (a sign, a
 # factor, an index, a dropped term) to a scratch git worktree of HEAD, builds, and runs the unit
-# tests: first the suites the list names for the mutated code, then, if they pass, every CTest unit
-# suite (two at a time, stopping at the first failure); a mutation the unit tests miss then meets
-# the quick validation tier (its gates and the regression limits of the blessed baselines). It
-# reports whether the mutation was caught (build error, failing test, failed gate or regression)
-# and by what, or that it survived. Not part of CI: one build per mutation (ccache, where
-# installed, shortens the rebuilds).
+# tests: first the suites the list names for the mutated code, one test case at a time up to the
+# first that fails, then, if they pass, every CTest unit suite (two at a time, stopping at the first
+# failure); a mutation the unit tests miss then meets the quick validation tier (its gates and the
+# regression limits of the blessed baselines). It reports whether the mutation was caught (build
+# error, failing test, failed gate or regression) and by what, or that it survived. Not part of CI:
+# one build per mutation (ccache, where installed, shortens the rebuilds).
 #
 # Usage: tests/mutations/run.sh [--only ID,ID,...] [--tests BOOST_RUN_TEST_FILTER] [--no-suite] [--timeout SECONDS]
 #   --tests     run only these unit tests (unit_tests --run_test filter) instead of every suite
@@ -37,6 +37,26 @@ src="$scratch/src" build="$scratch/src/build"
 run_filter() {
   (cd "$src" && timeout "$timeout_s" "$build/unit_tests" --run_test="$1" --log_level=nothing --report_level=no >/dev/null 2>&1)
 }
+# A mutation's own suites ($1, suite names joined by ':'), one test case at a time, stopping at the
+# first that fails: Boost.Test runs every case of a suite even after one has failed, and a slow
+# suite (MPM, DEM) would otherwise cost its whole run for a mutation its first case catches. The
+# cases are listed once, from the unmutated build (list_cases).
+run_own_suites() {
+  local suite case
+  for suite in ${1//:/ }; do
+    for case in ${cases[$suite]:-}; do run_filter "$suite/$case" || return 1; done
+    [[ -n "${cases[$suite]:-}" ]] || run_filter "$suite" || return 1
+  done
+}
+declare -A cases
+# Fills `cases`: for every top-level suite, its test cases' names (Boost.Test --list_content).
+list_cases() {
+  local suite="" line
+  while IFS= read -r line; do
+    if [[ "$line" =~ ^([A-Za-z0-9_]+)\*?$ ]]; then suite="${BASH_REMATCH[1]}"
+    elif [[ -n "$suite" && "$line" =~ ^\ {4}([A-Za-z0-9_]+)\*$ ]]; then cases[$suite]+="${BASH_REMATCH[1]} "; fi
+  done < <("$build/unit_tests" --list_content 2>&1)
+}
 run_tests() {
   if [[ -n "$tests" ]]; then run_filter "$tests"
   else (cd "$build" && timeout "$timeout_s" ctest -L unit -j2 --stop-on-failure >/dev/null 2>&1); fi
@@ -53,6 +73,7 @@ launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
 build_tests || { echo "baseline does not build (see $scratch/build.log)" >&2; exit 2; }
+list_cases
 run_tests || { echo "baseline unit tests fail: fix them before a mutation check" >&2; exit 2; }
 if [[ $suite -eq 1 ]]; then
   run_suite || { echo "baseline quick tier fails (see $scratch/suite.log): fix it before a mutation check" >&2; exit 2; }
@@ -74,7 +95,7 @@ PY
     echo "SKIPPED   $id ($file: text not found exactly once)"; skipped=$((skipped + 1)); continue
   fi
   if ! build_tests; then verdict="CAUGHT    $id (does not build)"; caught=$((caught + 1))
-  elif [[ -z "$tests" && -n "$own" ]] && ! run_filter "$own"; then verdict="CAUGHT    $id (unit tests: $own)"; caught=$((caught + 1))
+  elif [[ -z "$tests" && -n "$own" ]] && ! run_own_suites "$own"; then verdict="CAUGHT    $id (unit tests: $own)"; caught=$((caught + 1))
   elif ! run_tests; then verdict="CAUGHT    $id (unit tests)"; caught=$((caught + 1))
   elif [[ $suite -eq 1 ]] && ! run_suite; then verdict="CAUGHT    $id (quick tier)"; caught=$((caught + 1))
   else verdict="SURVIVED  $id"; survived=$((survived + 1)); survivors+=("$id"); fi
