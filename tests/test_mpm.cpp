@@ -293,6 +293,37 @@ BOOST_AUTO_TEST_CASE(the_volume_correction_stores_the_dilation_and_gives_it_back
   BOOST_TEST(project_drucker_prager<2>(Vec<2>(0.006, 0.004), 0.0, 0.0, off).volume_correction == 0.0);
 }
 
+// [Klár 2016: plasticity in log-strain space] The return mapping changes the stretch and keeps the
+// orientation: F^E = U Σ Vᵀ returns as U exp(ε) Vᵀ, so F^E = R S (R a rotation, S a stretch along
+// the axes) returns as R S' with S' along the same axes. A block of cohesionless sand without
+// gravity, every F^E a stretch turned by 30 deg, takes one substep short enough (1e-9 s) that the
+// grid does not deform it measurably: pulled apart (S = diag(1.01, 1.02)) the sand cannot carry
+// the tension and F^E becomes the rotation R itself to 1e-9; sheared beyond the cone, squeezed
+// along one axis and stretched along the other (S = diag(0.96, 1.02)), it yields and Rᵀ F^E stays
+// diagonal to 1e-9. (Rebuilding F^E as V exp(ε) Uᵀ would turn the body's stretch the other way.)
+BOOST_AUTO_TEST_CASE(the_return_mapping_keeps_the_orientation_of_a_turned_stretch) {
+  const Params<2> p = box(0.2, 0.2, 0.01);
+  const double a = pi / 6.0;
+  Mat<2> R;
+  R << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  for (const Vec<2>& stretch : {Vec<2>(1.01, 1.02), Vec<2>(0.96, 1.02)}) {
+    const bool tension = stretch.minCoeff() > 1.0;
+    Particles<2> ps;
+    fill<2>(ps, Vec<2>(0.05, 0.05), Vec<2>(0.15, 0.15), 0.005, 1800.0, Phase::Sand);
+    for (Mat<2>& F : ps.Fe) F = R * stretch.asDiagonal();
+    MpmSolver<2> solver(p, ps);
+    solver.substep(1e-9);
+    double off_frame = 0.0, yielded = 1.0;
+    for (const Mat<2>& F : solver.particles().Fe) {
+      const Mat<2> S = R.transpose() * F;
+      off_frame = std::max(off_frame, tension ? (F - R).cwiseAbs().maxCoeff() : std::max(std::abs(S(0, 1)), std::abs(S(1, 0))));
+      yielded = std::min(yielded, (S.diagonal() - stretch).cwiseAbs().maxCoeff());
+    }
+    BOOST_TEST(off_frame <= 1e-9);
+    BOOST_TEST(yielded >= 1e-3);  // the projection moved every particle's stretch
+  }
+}
+
 // [Tampubolon 2017: cohesion] A cohesive block (c0 = 2 kPa) at rest without gravity stays
 // undeformed: F^E = 𝟙 to 1e-10 after 1000 steps, J = 1, nothing stored as volume correction. (A
 // cone apex on the compressive side would project the block's zero strain and squeeze it.)
