@@ -452,7 +452,7 @@ BOOST_AUTO_TEST_CASE(all_sand_forces_conserve_momentum) {
   WaterParams water;
   water.viscosity = 0.2;
   MatArray<2> correction, stress;
-  compute_gradient_corrections(ps, nb, correction);
+  compute_gradient_corrections(ps, nb, {0.5, 0.8}, correction);
   VecArrayOf<2> wall, predicted;
   add_water_forces(ps, nb, water, correction);
   add_sand_forces(ps, nb, sand, water, 20.0, 1e-4, correction, wall);
@@ -539,7 +539,7 @@ BOOST_AUTO_TEST_CASE(the_wall_push_that_bounds_friction_is_the_whole_force_of_ro
     WaterParams water;
     water.viscosity = 0.2;
     MatArray<2> correction;
-    compute_gradient_corrections(ps, nb, correction);
+    compute_gradient_corrections(ps, nb, {0.5, 0.8}, correction);
     VecArrayOf<2> wall;
     add_sand_forces(ps, nb, sand, water, 20.0, 1e-4, correction, wall);
     BOOST_TEST_CONTEXT((rough ? "rough" : "smooth") << " wall") {

@@ -7,24 +7,13 @@
 #include "sand/rigid_body.hpp"
 #include "scene/mesh_fill.hpp"
 #include "sph/kernels.hpp"
+#include "sph/lattice_sum.hpp"
 
 namespace sc {
 
 template <int D>
 double lattice_mass(double rho0, double dx, double h, kernel::DensityKernel kind) {
-  const int reach = static_cast<int>(std::ceil(h / dx)) + 1;
-  double sum = 0.0;
-  std::array<int, D> k;
-  k.fill(-reach);
-  while (true) {
-    double r2 = 0.0;
-    for (int d = 0; d < D; ++d) r2 += (k[d] * dx) * (k[d] * dx);
-    sum += kernel::density_kernel<D>(kind, std::sqrt(r2), h);
-    int d = 0;
-    while (d < D && ++k[d] > reach) k[d++] = -reach;
-    if (d == D) break;
-  }
-  return rho0 / sum;
+  return rho0 / lattice_sum<D>(dx, h, [&](const Vec<D>&, double r) { return kernel::density_kernel<D>(kind, r, h); });
 }
 
 template <int D>

@@ -33,6 +33,8 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
   const Resolution res = resolve(spec, spacing);
   const double volume = std::pow(spacing, spec.dimension);
   p.water.reference_mass = spec.water.rest_density * volume;
+  p.water.full_moment = spec.dimension == 2 ? full_moment<2>(spec.support_ratio, spec.water.density_kernel)
+                                            : full_moment<3>(spec.support_ratio, spec.water.density_kernel);
   if (spec.artificial_viscosity > 0.0)  // ν = α h c / (2(D + 2)) (Monaghan 1992)
     p.water.viscosity = spec.artificial_viscosity * spec.water.rest_density * spec.support_ratio * spacing *
                         spec.eos.sound_speed / (2.0 * (spec.dimension + 2));
@@ -163,7 +165,7 @@ void Simulator<D>::compute_forces() {
 #pragma omp parallel for schedule(static)
     for (std::int64_t i = 0; i < n; ++i) ps_.force[i] = ps_.moves(i) ? Vec<D>(ps_.m[i] * g_) : Vec<D>::Zero();
     if (params_.water.gradient_correction) {
-      compute_gradient_corrections(ps_, nb_, correction_);
+      compute_gradient_corrections(ps_, nb_, CorrectionBand::of_full_moment(params_.water.full_moment), correction_);
       refresh_halo(correction_);
     }
     add_water_forces(ps_, nb_, params_.water, correction_);

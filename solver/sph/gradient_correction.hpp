@@ -12,6 +12,7 @@
 #include "core/smallest_eigenvalue.hpp"
 #include "neighbours/neighbour_grid.hpp"
 #include "sph/kernels.hpp"
+#include "sph/lattice_sum.hpp"
 #include "sph/neighbour_batch.hpp"
 
 namespace sc {
@@ -87,18 +88,43 @@ Mat<D> moment_matrix(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::
   return M;
 }
 
+/// The moment matrix of a particle inside a resting lattice block, λ_full 𝟙: the lattice of spacing
+/// dx, the support h = support_ratio dx, and masses that give the lattice the rest density by the
+/// density kernel `kind` (scene/scene_builder.hpp lattice_mass), so V_j = 1 / Σ_k W_kind(r_k) in
+/// units of dx^D, and λ_full = Σ_j V_j (−W'(r_j)/r_j) x_j² (spiky derivative W', x_j one coordinate
+/// of the offset), independent of dx. The continuum's moment matrix is 𝟙; a lattice's falls short
+/// of it, by about 30 % in 2-D with the spiky density kernel at h = 2 dx.
+template <int D>
+double full_moment(double support_ratio, kernel::DensityKernel kind) {
+  const double h = support_ratio;  // in units of dx
+  const double density = lattice_sum<D>(1.0, h, [&](const Vec<D>&, double r) { return kernel::density_kernel<D>(kind, r, h); });
+  const double moment = lattice_sum<D>(1.0, h, [&](const Vec<D>& d, double r) {
+    return r > 0.0 ? -kernel::spiky_derivative<D>(r, kernel::Support<D>(h)) / r * d[0] * d[0] : 0.0;
+  });
+  return moment / density;
+}
+
+/// The band of λ_min(M) over which the correction blends in (gradient_correction), as fractions of
+/// a full neighbourhood's λ_full (full_moment): above 0.8 λ_full the particle is corrected fully, so
+/// every particle of a lattice interior is; below 0.5 λ_full not at all, so a particle at a flat
+/// free surface, whose neighbourhood is half a full one across the surface, is not.
+struct CorrectionBand {
+  double none, full;
+  static CorrectionBand of_full_moment(double lambda_full) { return {0.5 * lambda_full, 0.8 * lambda_full}; }
+};
+
 /// Correction matrix L_i = M_i⁻¹ (moment_matrix), so that Σ_j V_j (A_j − A_i) L_i ∇W_ij = ∇A exactly
 /// for a linear field A.
 /// Where the neighbourhood is incomplete (free surface) the moment matrix loses rank; there L_i
 /// blends continuously to I (the uncorrected kernel) as the smallest eigenvalue λ of the moment
-/// matrix falls from `full` to `none`: L = (1 − w) I + w M⁻¹, w = clamp((λ − none)/(full − none)).
-/// A hard switch would make surface particles flicker between the two forces and stir the surface
-/// of a resting tank (test water/correction_weight_is_the_clamped_smallest_eigenvalue).
+/// matrix falls from `band.full` to `band.none`: L = (1 − w) I + w M⁻¹,
+/// w = clamp((λ − none)/(full − none)). A hard switch would make surface particles flicker between
+/// the two forces and stir the surface of a resting tank (test
+/// water/correction_weight_is_the_clamped_smallest_eigenvalue).
 template <int D>
-Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i,
-                           double none = 0.5, double full = 0.8) {
+Mat<D> gradient_correction(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i, CorrectionBand band) {
   const Mat<D> M = moment_matrix(ps, nb, i);
-  const double w = correction_weight(M, none, full);
+  const double w = correction_weight(M, band.none, band.full);
   if (w == 0.0) return Mat<D>::Identity();
   return (1.0 - w) * Mat<D>::Identity() + w * M.inverse();
 }
@@ -112,13 +138,14 @@ inline Vec<D> corrected_pair_term(const Mat<D>& Li, const Mat<D>& Lj, const Vec<
   return 0.5 * ((Li + Lj) * t);
 }
 
+/// L_i (gradient_correction) of every moving particle, 𝟙 for the others.
 template <int D>
-void compute_gradient_corrections(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, MatArray<D>& L) {
+void compute_gradient_corrections(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, CorrectionBand band, MatArray<D>& L) {
   L.resize(ps.size());
   const auto n = static_cast<std::int64_t>(ps.size());
   // Dynamic: the work per particle varies (walls, free surface) and moving particles are stored first.
 #pragma omp parallel for schedule(dynamic, 256)
-  for (std::int64_t i = 0; i < n; ++i) L[i] = ps.moves(i) ? gradient_correction(ps, nb, i) : Mat<D>::Identity();
+  for (std::int64_t i = 0; i < n; ++i) L[i] = ps.moves(i) ? gradient_correction(ps, nb, i, band) : Mat<D>::Identity();
 }
 
 }  // namespace sc

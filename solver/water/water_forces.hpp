@@ -15,6 +15,9 @@ struct WaterParams {
   double reference_mass = 1.0;       ///< m_ref [kg] of the symmetric surface-tension form
   kernel::DensityKernel density_kernel = kernel::DensityKernel::Spiky;  ///< kernel of eq 6
   bool gradient_correction = true;   ///< symmetrised Bonet-Lok correction of the pressure gradient
+  /// λ_full of the case's lattice (sph/gradient_correction.hpp full_moment), set by
+  /// SimulationParams::from_case: the correction's blend band is a fraction of it.
+  double full_moment = 1.0;
   bool mueller_half_pressure = false;  ///< eq 4: Müller's (P_i + P_j)/2 instead of the thesis' P_i + P_j
 };
 
