@@ -105,12 +105,16 @@ double full_moment(double support_ratio, kernel::DensityKernel kind) {
 }
 
 /// The band of λ_min(M) over which the correction blends in (gradient_correction), as fractions of
-/// a full neighbourhood's λ_full (full_moment): above 0.8 λ_full the particle is corrected fully, so
-/// every particle of a lattice interior is; below 0.5 λ_full not at all, so a particle at a flat
-/// free surface, whose neighbourhood is half a full one across the surface, is not.
+/// a full neighbourhood's λ_full (full_moment), each end a margin away from the two neighbourhoods
+/// it must tell apart: above 0.8 λ_full the particle is corrected fully, so every particle of a
+/// lattice interior (λ_full) is; below 0.6 λ_full not at all, so a particle at a flat free surface
+/// is not. Across a flat surface the neighbourhood is half a full one, λ_min = λ_full/2 exactly,
+/// and compression raises it (by about 2 % of λ_full at 3 % closer spacing): with the lower end at
+/// λ_full/2 itself, any compressed surface would blend in the correction of a direction it has no
+/// neighbours in.
 struct CorrectionBand {
   double none, full;
-  static CorrectionBand of_full_moment(double lambda_full) { return {0.5 * lambda_full, 0.8 * lambda_full}; }
+  static CorrectionBand of_full_moment(double lambda_full) { return {0.6 * lambda_full, 0.8 * lambda_full}; }
 };
 
 /// Correction matrix L_i = M_i⁻¹ (moment_matrix), so that Σ_j V_j (A_j − A_i) L_i ∇W_ij = ∇A exactly
