@@ -28,6 +28,7 @@
 #include "scene/scene_builder.hpp"
 #include "simulator/simulator.hpp"
 #include "sph/density.hpp"
+#include "sph/gradient_correction.hpp"
 #include "water/water_forces.hpp"
 #include "support/lattice.hpp"
 
@@ -99,6 +100,66 @@ void shear_sand(ParticleSet<2>& ps, NeighbourGrid<2>& nb, double rate) {
 }
 
 constexpr std::size_t kCentre = 6 * 12 + 6;  ///< an interior particle of the 12 x 12 lattice
+
+/// A water particle's pressure and acceleration in BedFace: the state-equation pressure of its
+/// own density at its place, the pressure it takes, its acceleration.
+struct State {
+  double own, p;
+  Vec<2> a;
+};
+
+/// A fixed porous bed (x < 0.05, saturated) beside a pond of full water at a uniform 1 kPa, no
+/// gravity, and one water particle that drifted into the bed's face while it was a parcel (no
+/// stiffness of its own): 0.55 spacings from the bed's first row, as the parcels of capillary_rise
+/// at 0.005 m sit. state_at(fraction) gives that particle's State with the given fraction of a full
+/// mass (its rest density as porous_flow sets it), the forces of eq 4 with or without the
+/// kernel-gradient correction (the band of the spiky lattice at h = 2 dx), and, with it, the
+/// parcels' corrections weighted (weight_partial_water_corrections) or not.
+struct BedFace {
+  PorousParams p = test_params();
+  ParticleSet<2> ps;
+  NeighbourGrid<2> nb;
+  EquationOfState eos;
+  std::size_t parcel = 0;
+
+  BedFace() {
+    add_block(ps, p, Phase::Boundary, {0.0, 0.0}, {0.05, 0.1}, 1.0);
+    add_block(ps, p, Phase::Water, {0.05, 0.0}, {0.12, 0.1}, 0.0);
+    parcel = ps.size();
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (ps.phase_of(i) == Phase::Water && std::abs(ps.x[i][0] - 0.055) < 1e-9 && std::abs(ps.x[i][1] - 0.045) < 1e-9)
+        parcel = i;
+    BOOST_TEST_REQUIRE(parcel < ps.size());
+    ps.x[parcel][0] = 0.045 + 0.55 * kDx;
+    nb.rebuild(ps);
+    eos.sound_speed = 15.0;
+  }
+
+  enum class Correction { None, Unweighted, Weighted };
+  State state_at(double fraction, Correction correction = Correction::None) {
+    const double w0 = kernel::density_kernel<2>(p.density_kernel, 0.0, p.water_support);
+    ps.m[parcel] = fraction * p.water_mass;
+    ps.rho0[parcel] = partial_water_rest_density(kRho, p.water_mass, ps.m[parcel], w0);
+    compute_density(ps, nb, p.density_kernel, kRho);
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      ps.force[i].setZero();
+      if (ps.moves(i)) ps.p[i] = i == parcel ? eos.pressure(ps.rho[i], ps.rho0[i]) : 1000.0;
+    }
+    const double own = ps.p[parcel];
+    set_partial_water_pressure(ps, nb, p.water_mass);
+    set_partial_water_density(ps, p.water_mass, kRho);
+    extrapolate_wall_pressure(ps, nb, Vec<2>(Vec<2>::Zero()), eos);
+    WaterParams water;
+    water.gradient_correction = correction != Correction::None;
+    MatArray<2> L;
+    if (water.gradient_correction) {
+      compute_gradient_corrections(ps, nb, CorrectionBand::of_full_moment(full_moment<2>(2.0, p.density_kernel)), L);
+      if (correction == Correction::Weighted) weight_partial_water_corrections(ps, p.water_mass, L);
+    }
+    add_water_forces(ps, nb, water, L);
+    return State{own, ps.p[parcel], Vec<2>(ps.force[parcel] / ps.m[parcel])};
+  }
+};
 
 }  // namespace
 
@@ -985,54 +1046,17 @@ BOOST_AUTO_TEST_CASE(partial_water_accelerates_like_a_full_particle_at_its_place
 }
 
 BOOST_AUTO_TEST_CASE(a_parcel_filled_back_inside_the_bed_face_regains_its_pressure_gradually) {
-  // How capillary_rise blew up at 0.005 m, in a small scene: a fixed porous bed (x < 0.05) beside a
-  // pond of full water at 1 kPa, and a water particle that drifted into the bed's face while it
-  // was a parcel (no stiffness of its own), 0.55 spacings from the bed's first row. The bed fills
-  // it back across kPartialWaterFraction of a full particle. At its place its own state equation
+  // How capillary_rise blew up at 0.005 m, in a small scene (BedFace): the bed fills the parcel
+  // that drifted into its face back across kPartialWaterFraction of a full particle. At its place its own state equation
   // (eq 7 with the rest density of its mass) reads far more than the pond's pressure; with a switch
   // at the threshold it took that pressure in the step of filling that crossed it, and its
   // acceleration jumped by thousands of m/s² (parcels were thrown out of the pools at metres per
   // second). Its pressure and acceleration must be continuous in its mass: across the threshold
   // (±1e-6 of a full mass, a fraction of one step's filling) they change by less than 1 %, and
   // they rise towards its own state equation only as it fills (own_pressure_weight).
-  const PorousParams p = test_params();
-  ParticleSet<2> ps;
-  add_block(ps, p, Phase::Boundary, {0.0, 0.0}, {0.05, 0.1}, 1.0);
-  add_block(ps, p, Phase::Water, {0.05, 0.0}, {0.12, 0.1}, 0.0);
-  std::size_t parcel = ps.size();
-  for (std::size_t i = 0; i < ps.size(); ++i)
-    if (ps.phase_of(i) == Phase::Water && std::abs(ps.x[i][0] - 0.055) < 1e-9 && std::abs(ps.x[i][1] - 0.045) < 1e-9)
-      parcel = i;
-  BOOST_TEST_REQUIRE(parcel < ps.size());
-  ps.x[parcel][0] = 0.045 + 0.55 * kDx;  // into the bed's face: 0.55 spacings from its first row
-  NeighbourGrid<2> nb;
-  nb.rebuild(ps);
-  EquationOfState eos;
-  eos.sound_speed = 15.0;
-  WaterParams water;
-  water.gradient_correction = false;
-  const double w0 = kernel::density_kernel<2>(p.density_kernel, 0.0, p.water_support);
-  struct State {
-    double own, p;  // its state-equation pressure at its place, the pressure it takes
-    Vec<2> a;
-  };
-  const auto state_at = [&](double fraction) {
-    ps.m[parcel] = fraction * p.water_mass;
-    ps.rho0[parcel] = partial_water_rest_density(kRho, p.water_mass, ps.m[parcel], w0);
-    compute_density(ps, nb, p.density_kernel, kRho);
-    for (std::size_t i = 0; i < ps.size(); ++i) {
-      ps.force[i].setZero();
-      if (ps.moves(i)) ps.p[i] = i == parcel ? eos.pressure(ps.rho[i], ps.rho0[i]) : 1000.0;
-    }
-    const double own = ps.p[parcel];
-    set_partial_water_pressure(ps, nb, p.water_mass);
-    set_partial_water_density(ps, p.water_mass, kRho);
-    extrapolate_wall_pressure(ps, nb, Vec<2>(Vec<2>::Zero()), eos);
-    add_water_forces(ps, nb, water, {});
-    return State{own, ps.p[parcel], Vec<2>(ps.force[parcel] / ps.m[parcel])};
-  };
-  const State below = state_at(kPartialWaterFraction - 1e-6), above = state_at(kPartialWaterFraction + 1e-6);
-  const State three_quarters = state_at(0.75), full = state_at(1.0);
+  BedFace scene;
+  const State below = scene.state_at(kPartialWaterFraction - 1e-6), above = scene.state_at(kPartialWaterFraction + 1e-6);
+  const State three_quarters = scene.state_at(0.75), full = scene.state_at(1.0);
   BOOST_TEST_MESSAGE("own pressure at the threshold " << above.own << " Pa; taken " << below.p << " / " << above.p
                      << " Pa; acceleration " << below.a.norm() << " / " << above.a.norm() << " m/s^2; at 3/4 "
                      << three_quarters.p << " Pa, full " << full.p << " Pa");
@@ -1043,6 +1067,29 @@ BOOST_AUTO_TEST_CASE(a_parcel_filled_back_inside_the_bed_face_regains_its_pressu
   BOOST_TEST(three_quarters.p > above.p);  // it regains its own pressure as it fills
   BOOST_TEST(three_quarters.p < full.p);
   BOOST_TEST(full.p == full.own);  // a full particle keeps its state equation, bitwise
+}
+
+BOOST_AUTO_TEST_CASE(a_parcel_at_a_bed_face_takes_the_uncorrected_kernel) {
+  // The parcel of BedFace (30 % of a full mass) in the pond's uniform pressure: the true pressure
+  // force is zero, and what the kernel gives it is the push of its incomplete neighbourhood
+  // (2 P_i Σ_j V_j ∇W_ij), out of the bed's face, which only a particle's own state equation holds
+  // in check. The kernel-gradient correction must not amplify that push on a particle without its
+  // own pressure: with the parcels' corrections weighted by their own-pressure weight
+  // (weight_partial_water_corrections) the parcel is pushed no harder than by the uncorrected
+  // kernel; with the correction at full weight it was pushed harder (parcels thrown out of
+  // capillary_rise's pools at 0.005 m). A full particle at the same place keeps its full
+  // correction, bitwise.
+  BedFace scene;
+  using C = BedFace::Correction;
+  const State plain = scene.state_at(0.3, C::None), weighted = scene.state_at(0.3, C::Weighted);
+  const State unweighted = scene.state_at(0.3, C::Unweighted);
+  BOOST_TEST_MESSAGE("parcel acceleration: uncorrected " << plain.a.transpose() << ", weighted " << weighted.a.transpose()
+                     << ", unweighted " << unweighted.a.transpose() << " m/s^2");
+  BOOST_TEST(plain.a[0] > 0.0);  // out of the bed's face
+  BOOST_TEST(weighted.a.norm() <= plain.a.norm());
+  BOOST_TEST(unweighted.a.norm() > plain.a.norm());
+  const State full = scene.state_at(1.0, C::Weighted), full_unweighted = scene.state_at(1.0, C::Unweighted);
+  BOOST_TEST((full.a - full_unweighted.a).norm() == 0.0);
 }
 
 BOOST_AUTO_TEST_SUITE_END()

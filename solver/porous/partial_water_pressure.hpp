@@ -7,6 +7,7 @@
 
 #include "core/particle_set.hpp"
 #include "neighbours/neighbour_grid.hpp"
+#include "sph/gradient_correction.hpp"
 #include "sph/kernels.hpp"
 
 namespace sc {
@@ -127,6 +128,30 @@ void set_partial_water_density(ParticleSet<D>& ps, double m0, double fluid_densi
     if (ps.phase_of(i) != Phase::Water) continue;
     const double own = own_pressure_weight(ps, i, m0);
     if (own < 1.0) ps.rho[i] += (1.0 - own) * (fluid_density - ps.rho0[i]);
+  }
+}
+
+/// Weights the kernel-gradient correction L_i (sph/gradient_correction.hpp) of every water particle
+/// lighter than a full one by its own-pressure weight w_i (own_pressure_weight): L_i ← (1 − w_i) 𝟙
+/// + w_i L_i, so a parcel (w_i = 0) takes the uncorrected kernel and the correction returns with
+/// the particle's own state equation, continuous in its mass. Ours, like the parcel model. The
+/// correction renormalises the gradient of a pressure field that the particle samples with its
+/// neighbours: Σ_j V_j (P_i + P_j) L_i ∇W_ij = Σ_j V_j (P_j − P_i) L_i ∇W_ij + 2 P_i L_i Σ_j V_j ∇W_ij,
+/// where the second sum vanishes in a complete neighbourhood and is held in check by the particle's
+/// own density where it does not (a particle pushed towards a gap reads less density and less
+/// pressure). A parcel's pressure is not its own sample: it copies the water around it, so at the
+/// face of a porous bed, where the parcels sit and their neighbourhoods are incomplete, that second
+/// term has no restoring part and the correction would amplify it by up to 1/band.full (a lattice
+/// interior's gain times 1.25); parcels and their neighbours were thrown out of the pools (test
+/// porous/a_parcel_at_a_bed_face_takes_the_uncorrected_kernel).
+template <int D>
+void weight_partial_water_corrections(const ParticleSet<D>& ps, double m0, MatArray<D>& L) {
+  const auto n = static_cast<std::int64_t>(ps.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (ps.phase_of(i) != Phase::Water) continue;
+    const double own = own_pressure_weight(ps, i, m0);
+    if (own < 1.0) L[i] = (1.0 - own) * Mat<D>::Identity() + own * L[i];
   }
 }
 

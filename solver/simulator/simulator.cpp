@@ -166,6 +166,7 @@ void Simulator<D>::compute_forces() {
     for (std::int64_t i = 0; i < n; ++i) ps_.force[i] = ps_.moves(i) ? Vec<D>(ps_.m[i] * g_) : Vec<D>::Zero();
     if (params_.water.gradient_correction) {
       compute_gradient_corrections(ps_, nb_, CorrectionBand::of_full_moment(params_.water.full_moment), correction_);
+      if (partial_water_mass() > 0.0) weight_partial_water_corrections(ps_, partial_water_mass(), correction_);
       refresh_halo(correction_);
     }
     add_water_forces(ps_, nb_, params_.water, correction_);
