@@ -1,8 +1,7 @@
 // First-order kernel-gradient correction (Bonet & Lok 1999): the SPH pressure gradient is exact
-// for linear fields where the smallest eigenvalue of a particle's moment matrix is at least 0.8,
-// and blends back to the uncorrected kernel below that (gradient_correction). A resting lattice
-// interior at h = 2 dx with the spiky density kernel lies inside the blend and is corrected only
-// in part (README, known limitation).
+// for linear fields where the smallest eigenvalue of a particle's moment matrix is at least 0.8 of
+// a full lattice neighbourhood's (every particle of a resting lattice interior), and blends back to
+// the uncorrected kernel below 0.6 of it (a flat free surface lies at one half), see CorrectionBand.
 #pragma once
 #include <algorithm>
 #include <array>
