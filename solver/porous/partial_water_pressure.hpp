@@ -41,9 +41,10 @@ bool is_partial_water(const ParticleSet<D>& ps, std::size_t i, double m0) {
   return ps.phase_of(i) == Phase::Water && ps.m[i] < kPartialWaterFraction * full_mass_at_level(ps, i, m0);
 }
 
-/// Weight of a water particle's own state equation in its pressure and density (ours [I]): 0 for a
-/// parcel (is_partial_water: below kPartialWaterFraction of a full particle at its level), 1 for a
-/// full particle, linear in the mass between. Porous exchange changes a particle's mass by a small
+/// Weight of a water particle's own state equation in its pressure, density and kernel-gradient
+/// correction (weight_partial_water_corrections; ours [I]): 0 for a parcel (is_partial_water: below
+/// kPartialWaterFraction of a full particle at its level), 1 for a full particle, linear in the mass
+/// between. Porous exchange changes a particle's mass by a small
 /// amount per step, so its pressure must be continuous in the mass. With a switch at
 /// kPartialWaterFraction, a parcel that the bed filled back across it went in one step from the
 /// pressure of the water around it to the state-equation pressure of its own compression. That
