@@ -6,6 +6,7 @@
 
 #include "case/case_file.hpp"
 #include "scene/scene_builder.hpp"
+#include "support/process.hpp"
 
 using namespace sc;
 
@@ -25,9 +26,9 @@ json valid_case() {
 }
 
 std::string write_temp(const json& j) {
-  const auto path = std::filesystem::temp_directory_path() / "sandcastle_case_test.json";
+  static const std::string path = test::fresh_path("case_test") + ".json";  // one per process
   std::ofstream(path) << j.dump();
-  return path.string();
+  return path;
 }
 
 /// Loads `j` and returns the JSON path of the error (or "no error").
@@ -35,7 +36,7 @@ std::string error_path(const json& j) {
   try {
     load_case(write_temp(j));
   } catch (const InputError& e) {
-    BOOST_TEST(e.file().find("sandcastle_case_test.json") != std::string::npos);
+    BOOST_TEST(e.file().find("case_test") != std::string::npos);
     BOOST_TEST(!e.rule().empty());
     return e.json_path();
   }
@@ -83,9 +84,9 @@ BOOST_AUTO_TEST_CASE(each_fault_names_its_json_path) {
 
 BOOST_AUTO_TEST_CASE(missing_file_and_bad_json) {
   BOOST_CHECK_THROW(load_case("/nonexistent/case.json"), InputError);
-  const auto path = std::filesystem::temp_directory_path() / "sandcastle_bad.json";
+  const std::string path = test::fresh_path("bad") + ".json";
   std::ofstream(path) << "{ \"name\": ";
-  BOOST_CHECK_THROW(load_case(path.string()), InputError);
+  BOOST_CHECK_THROW(load_case(path), InputError);
 }
 
 

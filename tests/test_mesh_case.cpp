@@ -6,13 +6,14 @@
 
 #include "case/case_file.hpp"
 #include "scene/scene_builder.hpp"
+#include "support/process.hpp"
 
 using namespace sc;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path folder = fs::temp_directory_path() / "sandcastle_mesh_case";
+const fs::path folder = test::fresh_path("mesh_case");  // one per process: concurrent runs do not share it
 
 /// A 1 x 2 x 1 box (file units), y up, as OBJ in the test folder.
 void write_box_obj() {

@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "probe.hpp"
 #include "roofline.hpp"
+#include "support/process.hpp"
 
 using namespace sc;
 
@@ -86,7 +87,7 @@ BOOST_AUTO_TEST_CASE(roofline_reads_each_stage_against_the_larger_floor) {
 }
 
 BOOST_AUTO_TEST_CASE(limits_come_from_the_probe_row_at_the_thread_count) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sandcastle_limits_test";
+  const std::filesystem::path dir = test::fresh_path("limits_test");
   std::filesystem::create_directories(dir);
   const std::string file = (dir / "probe.json").string();
   std::ofstream(file) << R"({"rows": [{"threads": 1, "bandwidth_bytes_per_s": 3e10, "flops_per_s": 1e10},

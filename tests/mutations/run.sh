@@ -71,7 +71,7 @@ list_cases() {
 run_tests() {
   if [[ -n "$tests" ]]; then run_filter "$tests"; return; fi
   local rc=0
-  (cd "$build" && timeout "$timeout_s" ctest -L unit -j2 --stop-on-failure >/dev/null 2>&1) || rc=$?
+  (cd "$build" && timeout "$timeout_s" ctest -L unit -j2 --stop-on-failure >"$scratch/unit.log" 2>&1) || rc=$?
   note_timeout $rc
 }
 # The quick validation tier of the mutated code against the gates and the blessed baselines.
@@ -93,6 +93,7 @@ list_cases
 baseline_fails() {
   if [[ $timed_out -eq 1 ]]; then echo "baseline $1 take longer than --timeout $timeout_s s: run on an idle machine or raise it" >&2
   else echo "baseline $1 fail: fix them before a mutation check" >&2; fi
+  grep -hE "\*\*\*|[Ff]ailed|error:" "$scratch/unit.log" "$scratch/suite.log" 2>/dev/null | head -20 >&2
   exit 2
 }
 run_tests || baseline_fails "unit tests"
