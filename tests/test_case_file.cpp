@@ -5,7 +5,10 @@
 #include <fstream>
 
 #include "case/case_file.hpp"
+#include "neighbours/neighbour_grid.hpp"
 #include "scene/scene_builder.hpp"
+#include "simulator/simulator.hpp"
+#include "sph/density.hpp"
 #include "support/process.hpp"
 
 using namespace sc;
@@ -135,6 +138,69 @@ BOOST_AUTO_TEST_CASE(spinning_block_starts_in_rigid_rotation_about_its_centre) {
   BOOST_TEST(P.norm() < 1e-14 * M);
   BOOST_TEST(std::abs(L / (3.0 * I) - 1.0) < 1e-12);
   BOOST_TEST(rest == 0.0);
+}
+
+// The scene of wet_sand_collapse (sand, water above it, porous flow, a tank with no-slip walls on
+// x- and y-, a slip wall on x+, open above) at 0.01 m: the summation density [thesis eq. 6] of an
+// interior particle of each block is its phase's rest density (each phase's mass is calibrated on
+// the lattice with its own rest density); a wall particle is rough exactly when it lies beyond a
+// no-slip side; the walls take no part in the porous flow (porosity and held water 0) while the
+// sand has the case's porosity.
+BOOST_AUTO_TEST_CASE(a_built_scene_gives_each_phase_its_rest_density_and_each_wall_its_side_rule) {
+  const CaseSpec spec = load_case(std::string(SANDCASTLE_SOURCE_DIR) + "/cases/wet_sand_collapse/case.json");
+  ParticleSet<2> ps = build_scene<2>(spec, 0.01);
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  compute_density(ps, nb, spec.water.density_kernel, spec.water.rest_density);
+  const auto at = [&](double x, double y) {
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if ((ps.x[i] - Vec<2>(x, y)).norm() < 1e-9) return i;
+    BOOST_FAIL("no particle at (" << x << ", " << y << ")");
+    return ps.size();
+  };
+  const std::size_t sand = at(0.055, 0.105), water = at(0.055, 0.23);  // 2 spacings inside their blocks
+  BOOST_TEST((ps.phase_of(sand) == Phase::Sand));
+  BOOST_TEST((ps.phase_of(water) == Phase::Water));
+  BOOST_TEST(ps.rho[sand] == 2650.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(ps.rho[water] == 1000.0, boost::test_tools::tolerance(1e-12));
+  std::size_t walls = 0, wrong_rough = 0, porous_walls = 0, sand_porosity = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.phase_of(i) == Phase::Sand && ps.porosity[i] == 0.4) ++sand_porosity;
+    if (ps.phase_of(i) != Phase::Boundary) continue;
+    ++walls;
+    const bool beyond_no_slip = ps.x[i][0] < 0.0 || ps.x[i][1] < 0.0;  // x- and y- are no-slip, x+ slip
+    if ((ps.rough[i] != 0) != beyond_no_slip) ++wrong_rough;
+    if (ps.porosity[i] != 0.0 || ps.absorbed[i] != 0.0) ++porous_walls;
+  }
+  BOOST_TEST(walls > 0u);
+  BOOST_TEST(wrong_rough == 0u);
+  BOOST_TEST(porous_walls == 0u);
+  BOOST_TEST(sand_porosity == 10u * 20u);  // every particle of the 0.1 x 0.2 m block
+}
+
+// water.artificial_viscosity α: the shear viscosity of Monaghan's artificial viscosity,
+// ν = α h c / 8 in 2-D and α h c / 10 in 3-D (Monaghan 2005, Rep. Prog. Phys. 68, §4.2), with h the
+// support radius, as the dynamic viscosity μ = ρ0 ν of the viscosity force [thesis eq. 5].
+BOOST_AUTO_TEST_CASE(artificial_viscosity_is_monaghans_shear_viscosity) {
+  const double alpha = 0.05, c = 10.0, rho0 = 1000.0, dx = 0.01;
+  for (const int dimension : {2, 3}) {
+    json j = valid_case();
+    j["water"] = {{"rest_density", rho0}, {"sound_speed", c}, {"artificial_viscosity", alpha}};
+    if (dimension == 3) {
+      j["dimension"] = 3;
+      j["domain"] = json::parse(R"({"min": [-1, -1, -1], "max": [1, 1, 1]})");
+      j["gravity"] = json::array({0.0, 0.0, -9.81});
+      j["blocks"][0]["min"] = json::array({0.0, 0.0, 0.0});
+      j["blocks"][0]["max"] = json::array({0.1, 0.1, 0.1});
+      j.erase("tank");
+    }
+    const CaseSpec spec = load_case(write_temp(j));
+    const double h = spec.support_ratio * dx;
+    const double nu = alpha * h * c / (dimension == 2 ? 8.0 : 10.0);
+    BOOST_TEST_CONTEXT("dimension " << dimension) {
+      BOOST_TEST(SimulationParams::from_case(spec, dx).water.viscosity == rho0 * nu, boost::test_tools::tolerance(1e-12));
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(particle_guard_names_the_case_spacing_and_flag) {

@@ -156,6 +156,55 @@ Bounce floor_bounce(double saturation) {
 
 BOOST_AUTO_TEST_SUITE(dem)
 
+// The Verlet list of the contact step (dem/neighbour_list.hpp) holds the pairs within range + skin
+// when it is built. A pair in range can be missing only after its two grains closed more than the
+// skin between them, so the list must count as stale once any grain has moved more than half the
+// skin, and until then every pair in range must be listed. Two grains range + 1.05 skin apart (not
+// listed) moving 0.6 skin each towards the other end in range: stale. Moving 0.45 skin each (still
+// out of range): not stale. A random cloud whose grains each moved 0.49 skin: not stale, and every
+// pair in range listed.
+BOOST_AUTO_TEST_CASE(verlet_list_goes_stale_before_a_pair_in_range_can_be_missing) {
+  const double range = 0.01, skin = 0.004;
+  using Points = std::vector<Vec<3>>;
+  const Points pair = {Vec<3>(0.0, 0.0, 0.0), Vec<3>(range + 1.05 * skin, 0.0, 0.0)};
+  const auto moved_together = [&](double by) {
+    Points x = pair;
+    x[0][0] += by;
+    x[1][0] -= by;
+    return x;
+  };
+  NeighbourList<3> near;
+  near.build(pair, range, skin);
+  std::size_t listed = 0;
+  near.for_each_near(0, [&](std::uint32_t) { ++listed; });
+  BOOST_TEST(listed == 0u);
+  BOOST_TEST(near.stale(moved_together(0.6 * skin), range));
+  BOOST_TEST(!near.stale(moved_together(0.45 * skin), range));
+
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  Points cloud(400);
+  for (auto& x : cloud) x = 0.025 * Vec<3>(unit(rng), unit(rng), unit(rng));
+  near.build(cloud, range, skin);
+  for (auto& x : cloud) {
+    Vec<3> e(unit(rng), unit(rng), unit(rng));
+    x += 0.49 * skin * e.normalized();
+  }
+  BOOST_TEST(!near.stale(cloud, range));
+  std::size_t in_range = 0, missing = 0;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    std::vector<bool> seen(cloud.size(), false);
+    near.for_each_near(i, [&](std::uint32_t j) { seen[j] = true; });
+    for (std::size_t j = 0; j < cloud.size(); ++j)
+      if (j != i && (cloud[i] - cloud[j]).norm() <= range) {
+        ++in_range;
+        if (!seen[j]) ++missing;
+      }
+  }
+  BOOST_TEST(in_range > 100u);
+  BOOST_TEST(missing == 0u);
+}
+
 // [Rungjiratananon 2008: DEM normal force]: a sphere launched at a floor rebounds with the
 // restitution of the damped oscillator and stays in contact for its half period, dry (ζ = 0.2) and
 // half saturated, where the paper's wetness raises the dashpot by 1 + s and the water adds its mass.

@@ -324,6 +324,62 @@ BOOST_AUTO_TEST_CASE(extrapolation_extends_a_field_constant_along_the_normal_exa
   BOOST_TEST(wrong == 0);
 }
 
+// [Zhu-Bridson 2005: velocity extrapolation] around a corner of the fluid: water in the cells
+// i < 3, j < 3 of an 8 x 8 grid, every face next to it carrying 5. A constant extended two cell
+// widths stays that constant on every face within two axis steps of a face next to the fluid (the
+// distance of the fast sweeping, φ, is at most that path's length, also round the corner, where φ
+// comes from the two-axis upwind root), and every face further than three cell widths (straight
+// line) from all of them is 0; the wall faces keep their 100.
+BOOST_AUTO_TEST_CASE(extrapolation_reaches_round_a_corner_of_the_fluid) {
+  const MacGrid<2> grid(Vec<2>::Zero(), Vec<2>::Constant(0.8), 0.1);
+  std::vector<Cell> label(grid.cell_count(), Cell::Air);
+  for (std::size_t k = 0; k < label.size(); ++k) {
+    const Index<2> c = MacGrid<2>::unflat(k, grid.n);
+    if (c[0] < 3 && c[1] < 3) label[k] = Cell::Water;
+  }
+  const int layers = 2;
+  FaceField<2> u = grid.zero_faces();
+  std::array<std::vector<Index<2>>, 2> sources;
+  for (int a = 0; a < 2; ++a)
+    for (std::size_t k = 0; k < u[a].size(); ++k) {
+      const Index<2> f = MacGrid<2>::unflat(k, grid.face_dims(a));
+      Index<2> below = f;
+      --below[a];
+      const bool next_to_fluid = (f[a] < grid.n[a] && is_fluid(label[grid.cell(f)])) ||
+                                 (f[a] > 0 && is_fluid(label[grid.cell(below)]));
+      if (grid.is_wall_face(a, f)) u[a][k] = 100.0;
+      else if (next_to_fluid) sources[a].push_back(f);
+      if (!grid.is_wall_face(a, f)) u[a][k] = next_to_fluid ? 5.0 : -7.0;
+    }
+  FaceField<2>* const fields[] = {&u};
+  extrapolate<2>(grid, label, layers, fields);
+  int near_wrong = 0, far_wrong = 0, walls_wrong = 0, near = 0;
+  for (int a = 0; a < 2; ++a)
+    for (std::size_t k = 0; k < u[a].size(); ++k) {
+      const Index<2> f = MacGrid<2>::unflat(k, grid.face_dims(a));
+      if (grid.is_wall_face(a, f)) {
+        walls_wrong += u[a][k] != 100.0;
+        continue;
+      }
+      int steps = 1 << 20;
+      double distance = INFINITY;
+      for (const Index<2>& s : sources[a]) {
+        steps = std::min(steps, std::abs(f[0] - s[0]) + std::abs(f[1] - s[1]));
+        distance = std::min(distance, std::hypot(f[0] - s[0], f[1] - s[1]));
+      }
+      if (steps <= layers) {
+        ++near;
+        near_wrong += std::abs(u[a][k] - 5.0) > 1e-12;
+      } else if (distance > layers + 1.0) {
+        far_wrong += u[a][k] != 0.0;
+      }
+    }
+  BOOST_TEST(near > 0);
+  BOOST_TEST(near_wrong == 0);
+  BOOST_TEST(far_wrong == 0);
+  BOOST_TEST(walls_wrong == 0);
+}
+
 // Hydrostatic rest [Zhu-Bridson 2005: Solving on the Grid], 2-D and 3-D: a water tank at rest stays
 // at rest (max |v| < 1e-6 m/s after 1 s) and its pressure is ρ g d within 0.5 % of ρ g H in every
 // fluid cell, d the depth below the fill height H [Zhu-Bridson 2005: free surface] (the ghost-fluid

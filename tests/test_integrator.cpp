@@ -42,6 +42,36 @@ BOOST_AUTO_TEST_CASE(free_fall_matches_the_discrete_solution) {
   BOOST_TEST((sim.particles().x[0] - x_exact).norm() <= 1e-12 * x_exact.norm());
 }
 
+BOOST_AUTO_TEST_CASE(start_up_relaxation_damps_until_relax_until_and_not_after) {
+  // The simulator's initial relaxation (SimulationParams::relax_until, relax_rate): a lone particle
+  // without gravity moves at v0; each step that starts before relax_until multiplies its velocity by
+  // exp(−rate Δt), each later step leaves it. relax_until = 0.0305 s with Δt = 1 ms: steps 0 .. 30
+  // start before it (31 damped steps), steps 31 .. 59 after it. To round-off.
+  ParticleSet<2> ps;
+  const std::size_t i = ps.append();
+  ps.m[i] = 0.1;
+  ps.h[i] = 0.03;
+  ps.rho0[i] = ps.rho[i] = 1000.0;
+  const Vec<2> v0(0.5, -1.5);
+  ps.v[i] = v0;
+  SimulationParams params;
+  params.gravity = {0.0, 0.0};
+  params.dt_max = 1e-3;
+  params.relax_until = 0.0305;
+  params.relax_rate = 20.0;
+  params.domain_min = {-10.0, -10.0};
+  params.domain_max = {10.0, 10.0};
+  Simulator<2> sim(ps, params);
+  const double d = std::exp(-params.relax_rate * params.dt_max);
+  for (int k = 0; k < 60; ++k) {
+    BOOST_REQUIRE(sim.step() == params.dt_max);
+    const Vec<2> expected = std::pow(d, std::min(k + 1, 31)) * v0;
+    BOOST_TEST_CONTEXT("after step " << k) {
+      BOOST_TEST((sim.particles().v[0] - expected).norm() <= 1e-12 * v0.norm());
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(linear_spring_matches_the_discrete_solution) {
   // A particle on a linear spring F = −k x stepped with symplectic_euler_step: the recurrence
   // (x, v) → (x + Δt v', v' = v − Δt ω² x) has the matrix [[1 − ω²Δt², Δt], [−ω²Δt, 1]] of

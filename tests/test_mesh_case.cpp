@@ -88,6 +88,24 @@ BOOST_AUTO_TEST_CASE(each_mesh_fault_names_its_json_path) {
   BOOST_TEST(error_path(flat) == "/meshes");
 }
 
+// A mesh may not reach into a closed tank wall: the wall particles and the mesh's would overlap.
+// A tank closed on every side but its top (z+ open): a mesh inside it loads, one sunk into its
+// floor or pushed through its x+ wall is refused at its JSON path, and one standing out of the
+// open top (inside the domain) loads.
+BOOST_AUTO_TEST_CASE(a_mesh_may_cross_an_open_tank_side_but_not_a_closed_one) {
+  json inside = box_case();
+  inside["tank"] = json::parse(R"({"min": [0, 0, 0], "max": [1, 1, 0.6],
+    "sides": {"x-": "no_slip", "x+": "slip", "y-": "slip", "y+": "slip", "z-": "no_slip", "z+": "open"}})");
+  json sunk = inside, through = inside, above = inside;
+  sunk["meshes"][0]["min_corner"] = json::array({0.1, 0.1, -0.05});
+  through["meshes"][0]["min_corner"] = json::array({0.9, 0.1, 0.1});
+  above["meshes"][0]["min_corner"] = json::array({0.1, 0.1, 0.4});  // top at 0.8 m, above the tank's 0.6
+  BOOST_TEST(error_path(inside) == "no error");
+  BOOST_TEST(error_path(sunk) == "/meshes/0");
+  BOOST_TEST(error_path(through) == "/meshes/0");
+  BOOST_TEST(error_path(above) == "no error");
+}
+
 BOOST_AUTO_TEST_CASE(unreadable_mesh_is_an_input_error_at_its_path) {
   json j = box_case();
   j["meshes"][0]["file"] = "empty.obj";

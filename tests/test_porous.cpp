@@ -516,6 +516,31 @@ BOOST_AUTO_TEST_CASE(a_saturated_bed_holds_the_same_water_fixed_or_moving) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(a_bed_particle_at_the_surface_has_the_pore_volume_of_an_interior_one) {
+  // The pore volume in saturation [thesis eq. 21] is φ V with V the particle's rest volume m/ρ0
+  // (porous/porous_volume.hpp), not m/ρ: the summation density falls short at a bed's free surface,
+  // and the pores there are no larger. A fixed bed at a uniform S0 = 0.5 whose top two rows read
+  // 0.8 ρ0, as a summation density does at a surface: after a porous step of 1 ns without gravity
+  // or capillarity (no drive, so no flow to speak of) every particle still reads S0, within 1e-9.
+  PorousParams p = test_params();
+  p.capillary_constant = 0.0;
+  NeighbourGrid<2> nb;
+  ParticleSet<2> ps = uniform_bed(p, Phase::Boundary, 0.5, nb);
+  std::size_t surface = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (ps.x[i][1] > 0.18) {
+      ps.rho[i] = 0.8 * ps.rho0[i];
+      ++surface;
+    }
+  PorousWork<2> w;
+  porous_step(ps, nb, p, Vec<2>(Vec<2>::Zero()), 1e-9, w);
+  std::size_t off = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    if (std::abs(ps.saturation[i] - 0.5) > 0.5e-9) ++off;
+  BOOST_TEST(surface == 2u * 30u);
+  BOOST_TEST(off == 0u);
+}
+
 BOOST_AUTO_TEST_CASE(fixed_and_moving_beds_carry_the_darcy_flux_of_gravity_drainage) {
   // A bed at S = 0.9 without capillarity under gravity alone (unit hydraulic gradient; P^p = 0 in
   // both beds: an unsaturated fixed skeleton, and eq 25 with k^p = 0): Darcy's law with the
