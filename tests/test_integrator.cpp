@@ -12,26 +12,42 @@
 
 using namespace sc;
 
+namespace {
+
+/// One water particle at x0 moving at v0, far from anything else.
+ParticleSet<2> lone_particle(const Vec<2>& x0, const Vec<2>& v0) {
+  ParticleSet<2> ps;
+  const std::size_t i = ps.append();
+  ps.m[i] = 0.1;
+  ps.h[i] = 0.03;
+  ps.rho0[i] = ps.rho[i] = 1000.0;
+  ps.x[i] = x0;
+  ps.v[i] = v0;
+  return ps;
+}
+
+/// A fixed step dt in a 20 m domain, no gravity.
+SimulationParams free_space(double dt) {
+  SimulationParams params;
+  params.gravity = {0.0, 0.0};
+  params.dt_max = dt;
+  params.domain_min = {-10.0, -10.0};
+  params.domain_max = {10.0, 10.0};
+  return params;
+}
+
+}  // namespace
+
 BOOST_AUTO_TEST_SUITE(integrator)
 
 BOOST_AUTO_TEST_CASE(free_fall_matches_the_discrete_solution) {
   // A lone particle in the simulator under gravity g with a fixed step Δt: the scheme's recurrence
   // v_{k+1} = v_k + g Δt, x_{k+1} = x_k + Δt v_{k+1} has the closed form v_n = v_0 + n g Δt,
   // x_n = x_0 + n Δt v_0 + g Δt² n(n + 1)/2 (explicit Euler would give n(n − 1)/2). To round-off.
-  ParticleSet<2> ps;
-  const std::size_t i = ps.append();
-  ps.m[i] = 0.1;
-  ps.h[i] = 0.03;
-  ps.rho0[i] = ps.rho[i] = 1000.0;
   const Vec<2> x0(0.3, 2.0), v0(0.5, 1.5);
-  ps.x[i] = x0;
-  ps.v[i] = v0;
-  SimulationParams params;
+  SimulationParams params = free_space(2e-3);
   params.gravity = {0.0, -9.81};
-  params.dt_max = 2e-3;
-  params.domain_min = {-10.0, -10.0};
-  params.domain_max = {10.0, 10.0};
-  Simulator<2> sim(ps, params);
+  Simulator<2> sim(lone_particle(x0, v0), params);
   const int n = 400;
   for (int k = 0; k < n; ++k) BOOST_REQUIRE(sim.step() == params.dt_max);
   const double dt = params.dt_max;
@@ -47,21 +63,11 @@ BOOST_AUTO_TEST_CASE(start_up_relaxation_damps_until_relax_until_and_not_after) 
   // without gravity moves at v0; each step that starts before relax_until multiplies its velocity by
   // exp(−rate Δt), each later step leaves it. relax_until = 0.0305 s with Δt = 1 ms: steps 0 .. 30
   // start before it (31 damped steps), steps 31 .. 59 after it. To round-off.
-  ParticleSet<2> ps;
-  const std::size_t i = ps.append();
-  ps.m[i] = 0.1;
-  ps.h[i] = 0.03;
-  ps.rho0[i] = ps.rho[i] = 1000.0;
   const Vec<2> v0(0.5, -1.5);
-  ps.v[i] = v0;
-  SimulationParams params;
-  params.gravity = {0.0, 0.0};
-  params.dt_max = 1e-3;
+  SimulationParams params = free_space(1e-3);
   params.relax_until = 0.0305;
   params.relax_rate = 20.0;
-  params.domain_min = {-10.0, -10.0};
-  params.domain_max = {10.0, 10.0};
-  Simulator<2> sim(ps, params);
+  Simulator<2> sim(lone_particle(Vec<2>(0.3, 2.0), v0), params);
   const double d = std::exp(-params.relax_rate * params.dt_max);
   for (int k = 0; k < 60; ++k) {
     BOOST_REQUIRE(sim.step() == params.dt_max);
