@@ -6,6 +6,7 @@
 #include <omp.h>
 #include <random>
 
+#include "case/case_file.hpp"
 #include "dem/dem_forces.hpp"
 #include "dem/dem_method.hpp"
 #include "scene/scene_builder.hpp"
@@ -808,6 +809,22 @@ BOOST_AUTO_TEST_SUITE(dem)
 // (dem::exchange_with_water). Seen through its ParticleView, free plus held water stays within
 // 1e-12 of its start and the total momentum of grains and water within 1e-12 of the momentum scale
 // (no gravity, no wall reached), while water is absorbed (in part and whole: no saturation above 1).
+// A case's cohesion as DEM liquid bridges (wet_sand_collapse: c = 3000 Pa, φ = 30°, porosity 0.4,
+// "bridges": true) at 0.01 m: two grains of the site's diameter d in contact pull with Willett's
+// 2πRγ, R = d/2 [Willett 2000: eq. 12-13], and that pull-off is the coarse-grained bridge of the
+// bulk cohesion, F0 = c ε d / ((1 − ε) tan φ) per metre in 2-D (Rumpf's tensile strength with
+// c = σ_t tan φ, docs/equations.md §7.8), to round-off.
+BOOST_AUTO_TEST_CASE(a_cases_cohesion_is_the_pull_off_of_its_grains_bridges) {
+  const CaseSpec spec = load_case(std::string(SANDCASTLE_SOURCE_DIR) + "/cases/wet_sand_collapse/case.json");
+  const double d = 0.01;
+  const std::unique_ptr<Method<2>> run = make_dem_method<2>(spec, d);
+  const auto* dem = dynamic_cast<const DemMethod<2>*>(run.get());
+  BOOST_TEST_REQUIRE(dem != nullptr);
+  const double F0 = 3000.0 * 0.4 * d / (0.6 * std::tan(pi / 6.0));
+  BOOST_TEST((dem->params().bridge == BridgeLaw::Willett));
+  BOOST_TEST(willett_force(0.5 * d, 0.0, 1e-9, dem->params().surface_tension, 0.0) == F0, boost::test_tools::tolerance(1e-12));
+}
+
 BOOST_AUTO_TEST_CASE(wet_adapter_conserves_water_and_momentum) {
   const auto run = wet_adapter();
   const auto totals = [&] {

@@ -110,6 +110,33 @@ BOOST_AUTO_TEST_CASE(a_run_built_through_the_registry_steps_and_its_view_matches
   BOOST_TEST(run->vtu_frame().ends_with("</VTKFile>\n"));
 }
 
+// The pore-water pressure a run shows (ParticleView::pore_water_pressure, the VTU field) is P^p − P^c:
+// unsaturated pore water is under suction. A fixed porous bed at S = 0.5 with the capillary
+// potential P^c = k^c (1 − S)^α of [thesis eq. 23] (k^c = 500 Pa, α = 0.5) and a permeability too
+// small to move water in one step: every bed particle away from its faces shows −k^c (1 − S)^α =
+// −353.55 Pa (1e-6) and its saturation 0.5.
+BOOST_AUTO_TEST_CASE(an_unsaturated_bed_shows_its_pore_water_under_suction) {
+  json doc = small_case_json();
+  doc["porous"] = {{"porosity", 0.4}, {"permeability", 1e-16}, {"capillary_constant", 500.0},
+                   {"capillary_exponent", 0.5}, {"initial_saturation", 0.5}};
+  doc["blocks"] = json::array({{{"phase", "porous_bed"}, {"min", {0.0, 0.0}}, {"max", {0.2, 0.12}}}});
+  const std::unique_ptr<Method<2>> run = make_method<2>(load_case(write_case(doc)), kSpacing);
+  run->step();
+  const ParticleView<2> view = run->particles();
+  BOOST_TEST_REQUIRE(view.pore_water_pressure.size() == view.size());
+  const double expected = -500.0 * std::sqrt(0.5);
+  std::size_t inside = 0, wrong = 0;
+  for (std::size_t i = 0; i < view.size(); ++i) {
+    if (view.porosity[i] <= 0.0) continue;
+    const Vec<2>& x = view.x[i];
+    if (x[0] < 0.05 || x[0] > 0.15 || x[1] < 0.04 || x[1] > 0.08) continue;
+    ++inside;
+    if (std::abs(view.pore_water_pressure[i] / expected - 1.0) > 1e-6 || std::abs(view.saturation[i] - 0.5) > 1e-6) ++wrong;
+  }
+  BOOST_TEST(inside > 10u);
+  BOOST_TEST(wrong == 0u);
+}
+
 BOOST_AUTO_TEST_CASE(two_runs_built_through_the_registry_agree_bitwise) {
   const CaseSpec spec = load_case(small_case);
   const std::unique_ptr<Method<2>> a = make_method<2>(spec, kSpacing), b = make_method<2>(spec, kSpacing);

@@ -469,6 +469,33 @@ BOOST_AUTO_TEST_CASE(all_sand_forces_conserve_momentum) {
   BOOST_TEST(total.norm() < 1e-12 * scale);
 }
 
+BOOST_AUTO_TEST_CASE(a_rigid_particle_feels_the_frictional_stress_of_its_yielding_neighbours) {
+  // The frictional force [thesis eq. 19] of a pair carries the sum of the two stresses, so the force
+  // of a block of yielding sand (stress σ) on a block of rigid sand (stress 0, as cluster members
+  // have) is what it would be if both blocks had σ/2: the pairs inside one block cancel in its
+  // total. A 16 x 16 sand lattice, upper half at σ_xy = σ_yx = 2 kPa, lower half unstressed: the
+  // total force on the lower half equals that of the split stress within 1e-9 and is not zero.
+  ParticleSet<2> ps = test::square_lattice(16, 0.01, 2.0, 2650.0, Phase::Sand);
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  Mat<2> sigma;
+  sigma << 0.0, 2000.0, 2000.0, 0.0;
+  const auto force_on_lower_half = [&](const Mat<2>& lower, const Mat<2>& upper) {
+    MatArray<2> stress(ps.size());
+    for (std::size_t i = 0; i < ps.size(); ++i) stress[i] = ps.x[i][1] < 0.08 ? lower : upper;
+    for (auto& f : ps.force) f.setZero();
+    add_frictional_forces(ps, nb, stress, MatArray<2>{});
+    Vec<2> total = Vec<2>::Zero();
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (ps.x[i][1] < 0.08) total += ps.force[i];
+    return total;
+  };
+  const Vec<2> rigid_below = force_on_lower_half(Mat<2>::Zero(), sigma);
+  const Vec<2> split = force_on_lower_half(0.5 * sigma, 0.5 * sigma);
+  BOOST_TEST(split.norm() > 0.0);
+  BOOST_TEST((rigid_below - split).norm() <= 1e-9 * split.norm());
+}
+
 BOOST_AUTO_TEST_CASE(partial_water_is_held_off_solid_walls_only) {
   // add_partial_water_wall_contact: a partial water particle (10 % of m0) 3 mm from a wall particle
   // (inside the contact distance (s_i + s_w)/2 ≈ 6.8 mm) is pushed straight away from it with
