@@ -1064,6 +1064,65 @@ BOOST_AUTO_TEST_CASE(partial_water_takes_the_pressure_of_the_water_around_it) {
     if (i != centre) BOOST_TEST(ps.p[i] == before[i]);
 }
 
+BOOST_AUTO_TEST_CASE(a_parcel_inside_a_fixed_bed_takes_the_pore_pressure_around_it) {
+  // A parcel (30 % of m0) that drifted into a saturated fixed bed, with no full water particle in
+  // its support, sits among bed particles closer than the lattice spacing: its own state equation
+  // (rest density of its mass) reads a compression of tens of percent and a pressure of hundreds of
+  // kPa, which threw it and the pond above it out of darcy_column. It takes instead the pore-water
+  // pressure of the bed around it, the Shepard average of the bed's P^p, here linear
+  // (P^p = 800 + 3e4 y) on a lattice symmetric about the parcel, so exactly P^p at its place.
+  const PorousParams p = test_params();
+  ParticleSet<2> ps;
+  add_block(ps, p, Phase::Boundary, {0.0, 0.0}, {0.13, 0.13}, 1.0);
+  for (std::size_t i = 0; i < ps.size(); ++i) ps.pore_pressure[i] = 800.0 + 3e4 * ps.x[i][1];
+  const auto centre = static_cast<std::size_t>(6 * 13 + 6);
+  const std::size_t parcel = ps.append();
+  ps.x[parcel] = ps.x[centre];
+  ps.m[parcel] = 0.3 * p.water_mass;
+  ps.h[parcel] = p.water_support;
+  const double w0 = kernel::density_kernel<2>(p.density_kernel, 0.0, p.water_support);
+  ps.rho0[parcel] = partial_water_rest_density(kRho, p.water_mass, ps.m[parcel], w0);
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  compute_density(ps, nb, p.density_kernel, kRho);
+  EquationOfState eos;
+  eos.sound_speed = 15.0;
+  ps.p[parcel] = eos.pressure(ps.rho[parcel], ps.rho0[parcel]);
+  BOOST_TEST_MESSAGE("parcel's own pressure in the bed: " << ps.p[parcel] << " Pa");
+  BOOST_TEST(ps.p[parcel] > 1e5);
+  set_partial_water_pressure(ps, nb, p.water_mass);
+  BOOST_TEST(ps.p[parcel] == 800.0 + 3e4 * ps.x[parcel][1], boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(a_compressed_water_particle_takes_no_water_from_the_bed) {
+  // The parcel of BedFace, 30 % of m0, in the face of a saturated bed under the pond's pressure:
+  // inside the face its summation density is more than 10 % above its rest density (the bed's
+  // particles are closer than the spacing), and water it took from the bed there would go into a place already
+  // overfull, raising its own state equation's pressure as it refills (darcy_column threw such
+  // parcels out of the face at metres per second). It takes none; the same parcel at its own
+  // lattice site in the pond, not compressed, does take water from the bed.
+  const Vec<2> g(0.0, -9.81);
+  double gained[2];
+  for (const bool inside : {true, false}) {
+    BedFace scene;
+    if (!inside) scene.ps.x[scene.parcel][0] = 0.055;
+    scene.nb.rebuild(scene.ps);
+    ParticleSet<2>& ps = scene.ps;
+    const double w0 = kernel::density_kernel<2>(scene.p.density_kernel, 0.0, scene.p.water_support);
+    ps.m[scene.parcel] = 0.3 * scene.p.water_mass;
+    ps.rho0[scene.parcel] = partial_water_rest_density(kRho, scene.p.water_mass, ps.m[scene.parcel], w0);
+    compute_density(ps, scene.nb, scene.p.density_kernel, kRho);
+    BOOST_TEST((ps.rho[scene.parcel] > 1.1 * ps.rho0[scene.parcel]) == inside);
+    const double before = ps.m[scene.parcel];
+    PorousWork<2> w;
+    porous_step(ps, scene.nb, scene.p, g, 1e-4, w);
+    gained[inside ? 0 : 1] = ps.m[scene.parcel] - before;
+  }
+  BOOST_TEST_MESSAGE("parcel's gain in one step: inside the face " << gained[0] << " kg, at its site " << gained[1] << " kg");
+  BOOST_TEST(gained[0] <= 0.0);
+  BOOST_TEST(gained[1] > 0.0);
+}
+
 BOOST_AUTO_TEST_CASE(partial_water_accelerates_like_a_full_particle_at_its_place) {
   // A parcel of 3 % of m0 (rest density ρ^f − (m0 − m) W(0, h), as porous_flow gives it) at the
   // centre of a full water lattice whose pressure is linear, p = 2000 + 5e4 x. Its own summation

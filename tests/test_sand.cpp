@@ -21,6 +21,7 @@
 #include "scene/scene_builder.hpp"
 #include "simulator/simulator.hpp"
 #include "sph/density.hpp"
+#include "water/viscosity_force.hpp"
 #include "water/water_forces.hpp"
 #include "support/lattice.hpp"
 
@@ -451,6 +452,7 @@ BOOST_AUTO_TEST_CASE(all_sand_forces_conserve_momentum) {
   sand.rigid_clusters = false;
   WaterParams water;
   water.viscosity = 0.2;
+  water.viscosity_moment = viscosity_moment<2>(2.0, water.density_kernel);  // as a case at h = 2 dx has
   MatArray<2> correction, stress;
   compute_gradient_corrections(ps, nb, {0.5, 0.8}, correction);
   VecArrayOf<2> wall, predicted;

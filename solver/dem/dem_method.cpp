@@ -93,7 +93,7 @@ void wet_params(const CaseSpec& spec, const DemCaseParams& own, double dx, dem::
     p.surface_tension = f0 / (2.0 * pi * 0.5 * dx);
   }
   p.coupling_support = sph.support_ratio * dx;
-  p.coupling_viscosity = sph.water.viscosity;
+  p.coupling_viscosity = sph.water.pair_viscosity(sph.water.viscosity);
   p.grain_pressure = p.water_density * to_vec<D>(spec.gravity).norm() * p.coupling_support;
   p.absorb_distance = 0.5 * dx;
 }

@@ -41,7 +41,7 @@ struct Params {
   double bridge_liquid_fraction = 0.01;  ///< share of the pair's held water that forms one bridge (Willett)
   // --- coupling with the SPH water ------------------------------------------------------------
   double coupling_support = 0.0;     ///< kernel support h of the water-grain terms [m]
-  double coupling_viscosity = 0.0;   ///< μ of the water-grain viscous term [Pa s]
+  double coupling_viscosity = 0.0;   ///< μ the water-grain viscous term carries (eq 5's pair viscosity) [Pa s]
   double grain_pressure = 0.0;       ///< p_g, the grain's constant pressure in the pressure term [Pa]
   double absorb_distance = 0.0;      ///< a water particle within R + this of a grain can be absorbed [m]
 };

@@ -69,8 +69,14 @@ double own_pressure_weight(const ParticleSet<D>& ps, std::size_t i, double m0) {
 /// P_i^env of the full water around it, the Shepard average Σ_j V_j p_j W_ij / Σ_j V_j W_ij over its
 /// water neighbours j ≠ i that are not parcels (their state-equation pressures; poly6 kernel,
 /// support h_i), and a particle between a parcel and a full one the mix, continuous in its mass
-/// (own_pressure_weight says why). One without such neighbours (in the pores of sand, or a droplet)
-/// keeps its own pressure, which holds it off walls and sand. Ours, not in the thesis or Lenaerts
+/// (own_pressure_weight says why). One without such neighbours but inside a fixed porous bed takes
+/// the pore-water pressure of the bed around it, the same Shepard average of the bed particles'
+/// P^p (porous/rigid_pore_pressure.hpp; the water around it is the bed's pore water): the bed takes
+/// parcels in (add_partial_water_wall_contact), so one can sit among the bed's particles, closer
+/// than the spacing, where its own state equation reads a compression of tens of percent and a
+/// pressure of MPa that threw it and the pond out of darcy_column (test
+/// porous/a_parcel_inside_a_fixed_bed_takes_the_pore_pressure_around_it). One with neither (in the
+/// pores of moving sand, or a droplet) keeps its own pressure, which holds it off walls and sand. Ours, not in the thesis or Lenaerts
 /// et al. 2008: a partial particle is a parcel of the surrounding water, but its own summation
 /// density (eq 6) is dominated by its neighbours (its self term is small), so a neighbour closer
 /// than the lattice spacing drives ρ_i/ρ0_i far above 1 and the Tait pressure (×(ρ/ρ0)^7) with it,
@@ -94,14 +100,20 @@ void set_partial_water_pressure(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, 
 #pragma omp parallel for schedule(dynamic, 64)
   for (std::int64_t k = 0; k < n; ++k) {
     const std::size_t i = lighter[k];
-    double weight = 0.0, sum = 0.0;
+    double weight = 0.0, sum = 0.0, bed_weight = 0.0, bed_sum = 0.0;
     for (const auto j : nb.of(i)) {
-      if (j == i || ps.phase_of(j) != Phase::Water || is_partial_water(ps, j, m0)) continue;
+      if (j == i) continue;
       const double w = ps.volume(j) * kernel::poly6<D>((ps.x[i] - ps.x[j]).norm(), ps.h[i]);
-      weight += w;
-      sum += w * ps.p[j];
+      if (ps.phase_of(j) == Phase::Water && !is_partial_water(ps, j, m0)) {
+        weight += w;
+        sum += w * ps.p[j];
+      } else if (ps.phase_of(j) == Phase::Boundary && ps.porosity[j] > 0.0) {
+        bed_weight += w;
+        bed_sum += w * ps.pore_pressure[j];
+      }
     }
-    const double own = own_pressure_weight(ps, i, m0), env = weight > 0.0 ? sum / weight : ps.p[i];
+    const double own = own_pressure_weight(ps, i, m0);
+    const double env = weight > 0.0 ? sum / weight : bed_weight > 0.0 ? bed_sum / bed_weight : ps.p[i];
     mixed[k] = own > 0.0 ? env + own * (ps.p[i] - env) : env;
   }
   for (std::size_t k = 0; k < lighter.size(); ++k) ps.p[lighter[k]] = mixed[k];

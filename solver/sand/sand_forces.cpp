@@ -91,12 +91,13 @@ void add_sand_forces(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const SandP
       const Vec<D> fp = corrected ? corrected_pair_term<D>(correction[i], correction[j], fp0) : fp0;
       f += fp;
       if (is_sand(ps.phase[j])) {
-        if (sand.viscosity > 0.0) f += viscosity_pair_force<D>(sand.viscosity, Vi, Vj, vi, ps.v[j], r, si, ps.h[j]);
+        if (sand.viscosity > 0.0)
+          f += viscosity_pair_force<D>(water.pair_viscosity(sand.viscosity), Vi, Vj, vi, ps.v[j], r, si, ps.h[j]);
         continue;
       }
       const Vec<D> fc = pair_contact_force(ps, i, spacing_i, j, spacing_of(ps.m[j], ps.rho0[j]), d, r, sand, sound_speed, dt);
       f += fc;
-      if (ps.moves(j)) f += viscosity_pair_force<D>(water.viscosity, Vi, Vj, vi, ps.v[j], r, si, ps.h[j]);
+      if (ps.moves(j)) f += viscosity_pair_force<D>(water.pair_viscosity(water.viscosity), Vi, Vj, vi, ps.v[j], r, si, ps.h[j]);
       else if (ps.rough[j]) wall += fp + fc;
     }
     ps.force[i] += f;

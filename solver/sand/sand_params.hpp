@@ -29,7 +29,7 @@ struct SandParams {
   double friction_angle_deg = 30.0;  ///< φ [deg]; μ_f = sin φ in eqs 8 and 10
   double cohesion = 0.0;             ///< c [Pa] of the yield test, eq 10 (of dry sand)
   bool wet_cohesion_loss = true;     ///< c = c0 (1 − S) for wetted sand (porous/wet_cohesion.hpp)
-  double viscosity = 0.0;            ///< SPH viscosity between sand particles [Pa s] (numerical damping)
+  double viscosity = 0.0;            ///< viscosity of eq 5 between sand particles [Pa s] (numerical damping)
   double wall_friction = -1.0;       ///< Coulomb coefficient of rough walls; < 0: tan φ
   double contact_damping = 0.5;      ///< damping ratio ζ of the Bell et al. 2005 normal contact
   bool rigid_clusters = true;        ///< project non-yielding sand onto rigid motions (eqs 12b-18)

@@ -15,6 +15,7 @@
 #include "simulator/symplectic_euler.hpp"
 #include "scene/scene_builder.hpp"
 #include "sph/density.hpp"
+#include "water/viscosity_force.hpp"
 #include "water/water_forces.hpp"
 
 namespace sc {
@@ -35,6 +36,8 @@ SimulationParams SimulationParams::from_case(const CaseSpec& spec, double spacin
   p.water.reference_mass = spec.water.rest_density * volume;
   p.water.full_moment = spec.dimension == 2 ? full_moment<2>(spec.support_ratio, spec.water.density_kernel)
                                             : full_moment<3>(spec.support_ratio, spec.water.density_kernel);
+  p.water.viscosity_moment = spec.dimension == 2 ? viscosity_moment<2>(spec.support_ratio, spec.water.density_kernel)
+                                                 : viscosity_moment<3>(spec.support_ratio, spec.water.density_kernel);
   if (spec.artificial_viscosity > 0.0)  // ν = α h c / (2(D + 2)) (Monaghan 1992)
     p.water.viscosity = spec.artificial_viscosity * spec.water.rest_density * spec.support_ratio * spacing *
                         spec.eos.sound_speed / (2.0 * (spec.dimension + 2));
@@ -117,8 +120,10 @@ double Simulator<D>::stable_dt() const {
   const double hmin = scales.spacing;
   if (!std::isfinite(hmin)) return params_.dt_max;
   double dt = std::min(params_.dt_max, motion_limit(hmin, scales.speed, scales.acceleration));
-  if (params_.water.viscosity > 0.0)
-    dt = std::min(dt, 0.125 * hmin * hmin * params_.water.rest_density / params_.water.viscosity);
+  if (params_.water.viscosity > 0.0) {
+    const double mu = params_.water.pair_viscosity(params_.water.viscosity);
+    dt = std::min(dt, 0.125 * hmin * hmin * params_.water.rest_density / mu);
+  }
   return dt;
 }
 

@@ -69,7 +69,7 @@ class WaterForceOn {
       f_ += corrected_ ? corrected_pair_term<D>(correction_[i_], correction_[j], fp) : fp;
       const bool boundary = ps_.phase_of(j) == Phase::Boundary;
       if (!boundary || ps_.rough[j])
-        f_ += viscosity_pair_force<D>(params_.viscosity, Vi_, Vj, vi_, ps_.v[j], r, si_, ps_.h[j]);
+        f_ += viscosity_pair_force<D>(params_.pair_viscosity(params_.viscosity), Vi_, Vj, vi_, ps_.v[j], r, si_, ps_.h[j]);
       if (!boundary && kappa_prime_ != 0.0)
         f_ += surface_tension_pair_force<D>(kappa_prime_, mi_, ps_.m[j], d, r, si_, ps_.h[j]);
     }
@@ -89,7 +89,7 @@ class WaterForceOn {
       t.cohesive[k] = !boundary && tension ? 1.0 : 0.0;
     }
     const kernel::Support<D> si = si_;
-    const double Vi = Vi_, Pi = Pi_, mi = mi_, mu = params_.viscosity, kappa = kappa_prime_;
+    const double Vi = Vi_, Pi = Pi_, mi = mi_, mu = params_.pair_viscosity(params_.viscosity), kappa = kappa_prime_;
     // Müller's half as a constant of the loop's code (a flag read in the loop stops it vectorising).
     const auto factors = [&](auto half) {
       for (int k = 0; k < b.size; ++k) {

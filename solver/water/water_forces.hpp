@@ -10,7 +10,7 @@ namespace sc {
 /// Parameters of the water model (case file key "water").
 struct WaterParams {
   double rest_density = 1000.0;      ///< ρ0 [kg/m^3]
-  double viscosity = 0.0;            ///< μ [Pa s], SPH viscosity of eq 5
+  double viscosity = 0.0;            ///< μ [Pa s], the dynamic viscosity eq 5 models
   double surface_tension = 0.0;      ///< κ [1/s^2] of Becker & Teschner 2007
   double reference_mass = 1.0;       ///< m_ref [kg] of the symmetric surface-tension form
   kernel::DensityKernel density_kernel = kernel::DensityKernel::Spiky;  ///< kernel of eq 6
@@ -18,6 +18,13 @@ struct WaterParams {
   /// λ_full of the case's lattice (sph/gradient_correction.hpp full_moment), set by
   /// SimulationParams::from_case: the correction's blend band is a fraction of it.
   double full_moment = 1.0;
+  /// The viscosity moment of the case's lattice (water/viscosity_force.hpp viscosity_moment), set
+  /// by SimulationParams::from_case: eq 5's sum falls short of μ∇²v by this factor on a lattice,
+  /// so the pair force carries μ divided by it. 1 = eq 5 as printed.
+  double viscosity_moment = 1.0;
+  /// The viscosity `mu` of a pair force of eq 5 that is to carry μ∇²v on the case's lattice
+  /// (viscosity_pair_force).
+  double pair_viscosity(double mu) const { return mu / viscosity_moment; }
   bool mueller_half_pressure = false;  ///< eq 4: Müller's (P_i + P_j)/2 instead of the thesis' P_i + P_j
 };
 
