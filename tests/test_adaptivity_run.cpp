@@ -131,4 +131,35 @@ BOOST_AUTO_TEST_CASE(density_offsets_make_density_continuous_across_a_pass) {
     BOOST_TEST(ps.density_offset[i] == offsets[i] / std::exp(1.0), boost::test_tools::tolerance(1e-12));
 }
 
+// Only the phases a case names split and merge ("phases" of "adaptive"): a water slab and a sand
+// slab beside it, one forced merge pass. With water named, the water merges and with sand named,
+// the sand; a phase not named keeps every particle.
+BOOST_AUTO_TEST_CASE(only_the_phases_named_split_and_merge) {
+  for (const auto& [water, sand] : {std::pair{true, false}, std::pair{false, true}, std::pair{true, true}}) {
+    ParticleSet<2> ps = slab(10);
+    const std::size_t n = ps.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t k = ps.append();
+      ps.x[k] = ps.x[i] + Vec<2>(0.8, 0.0);
+      ps.m[k] = 2.65 * ps.m[i];
+      ps.h[k] = ps.h[i];
+      ps.rho0[k] = ps.rho[k] = 2.65 * kRho0;
+      ps.phase[k] = static_cast<std::uint8_t>(Phase::Sand);
+    }
+    AdaptivitySpec spec = water_spec();
+    spec.adapt_water = water;
+    spec.adapt_sand = sand;
+    spec.forced = ForcedCycle{0.2, 1.0};
+    NeighbourGrid<2> nb;
+    nb.rebuild(ps);
+    AdaptAccount account;
+    adapt_particles<2>(ps, nb, spec, 0.0, account);
+    std::size_t waters = 0, sands = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) (ps.phase_of(i) == Phase::Water ? waters : sands) += 1;
+    BOOST_TEST_MESSAGE("water " << water << ", sand " << sand << ": " << waters << " and " << sands << " of " << n);
+    BOOST_TEST((waters < n) == water);
+    BOOST_TEST((sands < n) == sand);
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()

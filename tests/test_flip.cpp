@@ -518,6 +518,33 @@ BOOST_AUTO_TEST_CASE(wall_normal_stress_is_the_weight_of_the_layer) {
   }
 }
 
+// [Zhu-Bridson 2005: Frictional Boundary Conditions]: each wall stops the sand moving into it with
+// the same normal stress. A tank full of sand at zero pressure, its velocities before the
+// projection v into every wall (the faces on the tank's sides): the cells next to each of the four
+// walls carry ρ Δx v/(2Δt), and a wall the sand moves away from carries none.
+BOOST_AUTO_TEST_CASE(every_wall_stops_the_sand_pushed_into_it_with_the_same_stress) {
+  const MacGrid<2> grid(Vec<2>::Zero(), Vec<2>(0.08, 0.08), 0.01);
+  const double rho = 2000.0, v = 0.3, dt = 1e-3;
+  const CellState<2> cells = box_cells<2>(grid, {0, 0}, {8, 8}, Cell::Sand, rho);
+  const std::vector<double> p(grid.cell_count(), 0.0);
+  for (const double sign : {1.0, -1.0}) {  // into the walls, then away from them
+    FaceField<2> before = grid.zero_faces();
+    for (int a = 0; a < 2; ++a)
+      for (std::size_t k = 0; k < before[a].size(); ++k) {
+        const int along = MacGrid<2>::unflat(k, grid.face_dims(a))[a];
+        if (along == 0) before[a][k] = -sign * v;
+        if (along == grid.n[a]) before[a][k] = sign * v;
+      }
+    for (int a = 0; a < 2; ++a)
+      for (const int side : {0, 1}) {
+        Index<2> c{4, 4};
+        c[a] = side ? grid.n[a] - 1 : 0;
+        const double stress = wall_normal_stress<2>(grid, cells, p, before, dt, a, side, c);
+        BOOST_TEST(stress == (sign > 0.0 ? rho * grid.dx * v / (2.0 * dt) : 0.0), boost::test_tools::tolerance(1e-12));
+      }
+  }
+}
+
 // [Zhu-Bridson 2005: Frictional Boundary Conditions]: flowing sand (a layer 4 cells deep, every cell
 // yielding, ρ = 2000) sliding at u0 over a floor of μ_w = 0.5 under a pressure p = 500 Pa at the
 // floor loses μ_w p Δt/(ρ Δx) of its speed in one step on the faces next to the floor and nothing

@@ -10,6 +10,7 @@
 
 #include "case/case_file.hpp"
 #include "method/registry.hpp"
+#include "mpm/mpm_method.hpp"
 #include "simulator/sph_probe.hpp"
 #include "support/process.hpp"
 
@@ -385,6 +386,30 @@ BOOST_AUTO_TEST_CASE(an_mpm_run_built_through_the_registry_steps) {
   BOOST_TEST(r.exit_code == 2);
   BOOST_TEST(r.err.find("/methods/mpm/porosty") != std::string::npos, r.err);
   BOOST_TEST(!fs::exists(out));
+}
+
+// A porous bed under MPM takes the case's "porous" section as Tampubolon et al. 2017 use it
+// (darcy_column, its bed filled to half saturation, 0.01 m):
+// - its pores hold ρ_w n S of the bed's volume as water particles on the bed's sites, to round-off;
+// - the drag c_E resists a seepage at Darcy's flux q = (k/μ) ρ_w g i, of permeability k and fluid
+//   viscosity μ, with the water's share of the head gradient, c_E q/n = n ρ_w g i [Tampubolon 2017:
+//   drag c_E], to round-off.
+BOOST_AUTO_TEST_CASE(an_mpm_bed_holds_its_pore_water_and_drags_it_by_darcys_law) {
+  std::ifstream in(std::string(SANDCASTLE_SOURCE_DIR) + "/cases/darcy_column/case.json");
+  json doc = json::parse(in);
+  doc["porous"]["initial_saturation"] = 0.5;
+  const CaseSpec spec = with_method(load_case(write_case(doc)), "mpm");
+  const double dx = 0.01, n = 0.4, S = 0.5, rho_w = 1000.0, g = 9.81;
+  const std::unique_ptr<Method<2>> run = make_method<2>(spec, dx);
+  const ParticleView<2> view = run->particles();
+  double pore_water = 0.0;
+  for (std::size_t i = 0; i < view.size(); ++i)
+    if (view.phase_of(i) == Phase::Water && view.x[i][1] < 0.5) pore_water += view.m[i];
+  BOOST_TEST(pore_water == rho_w * n * S * 0.2 * 0.3, boost::test_tools::tolerance(1e-12));
+  const double k = 2.04e-9, mu = 1e-3, i = 0.5;
+  const double q = k / mu * rho_w * g * i;
+  const double drag = mpm_params<2>(spec, read_mpm_params(spec), dx).drag;
+  BOOST_TEST(drag * q / n == n * rho_w * g * i, boost::test_tools::tolerance(1e-12));
 }
 
 // DEM through the seam (solver/dem/dem_method.hpp): the column packed in its mould weighs ρ L H, the grains fall onto the floor and push no deeper than

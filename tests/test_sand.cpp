@@ -471,6 +471,40 @@ BOOST_AUTO_TEST_CASE(all_sand_forces_conserve_momentum) {
   BOOST_TEST(total.norm() < 1e-12 * scale);
 }
 
+BOOST_AUTO_TEST_CASE(the_yield_test_sees_the_velocity_the_steps_forces_give) {
+  // [Zhu-Bridson 2005: rigid stress] The rigid test [thesis eq. 12a]-[thesis eq. 13] is made on the
+  // velocity the step would give without friction, v + Δt F/m, so that sand at rest under forces
+  // that shear it yields at once. A 16 x 16 sand lattice at rest under 100 Pa, with the shearing
+  // acceleration a_x = A y: its interior reads the strain rate of v_x = Δt A y by the SPH gradient
+  // of [thesis eq. 20], λ Δt A/√2 with λ the lattice's gradient moment (gradient_moment: about 0.7
+  // at h = 2 dx, the gradient being uncorrected), within 1e-9, and yields (its rigid stress exceeds
+  // what friction holds); without the forces it stays rigid.
+  const double dt = 1e-4, A = 2e4;
+  for (const bool shear : {false, true}) {
+    ParticleSet<2> ps = sand_lattice(16, 0.01);
+    NeighbourGrid<2> nb = neighbours_with_density(ps);
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      ps.p[i] = 100.0;
+      ps.force[i] = shear ? Vec<2>(ps.m[i] * A * ps.x[i][1], 0.0) : Vec<2>::Zero();
+    }
+    SandParams sand;
+    MatArray<2> stress;
+    VecArrayOf<2> predicted;
+    update_sand_state(ps, nb, sand, 9.81, dt, stress, predicted);
+    int interior = 0, rigid = 0;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      if (std::min(ps.x[i][0], ps.x[i][1]) < 0.035 || std::max(ps.x[i][0], ps.x[i][1]) > 0.12) continue;
+      ++interior;
+      rigid += ps.rigid[i];
+      const double lambda = gradient_moment(ps, nb, i)(1, 1);
+      if (shear) BOOST_TEST(ps.strain_rate[i] == lambda * dt * A / std::sqrt(2.0), tt::tolerance(1e-9));
+    }
+    BOOST_TEST_MESSAGE((shear ? "sheared" : "at rest") << ": " << rigid << " of " << interior << " interior particles rigid");
+    BOOST_TEST(interior > 50);
+    BOOST_TEST(rigid == (shear ? 0 : interior));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(a_rigid_particle_feels_the_frictional_stress_of_its_yielding_neighbours) {
   // The frictional force [thesis eq. 19] of a pair carries the sum of the two stresses, so the force
   // of a block of yielding sand (stress σ) on a block of rigid sand (stress 0, as cluster members
@@ -804,6 +838,41 @@ BOOST_AUTO_TEST_CASE(wall_contacts_of_many_large_clusters_are_the_same_at_1_and_
     }
   }
   omp_set_num_threads(threads);
+}
+
+BOOST_AUTO_TEST_CASE(a_spinning_block_whose_corner_nears_a_floor_is_stopped_by_it) {
+  // A rigid 10 x 5 block, its centre at rest, spinning at 10 rad/s (counter-clockwise) without
+  // force, 0.2 mm above a floor's contact distance: its lower left corner moves down at about
+  // 0.45 m/s and would close the gap within the thesis step. The contacts the sweeps consider
+  // reach as far as a member moves in the step, by the spin too (wall_contact_reach: |v_cm| plus
+  // |ω| times the largest arm), so constrain_clusters_by_walls stops the corner at the floor: after
+  // the step no member is closer to the floor than the contact distance (within 1e-12 m).
+  const double dt = 1e-3, dx = 0.01, gap = 2e-4, omega = 10.0;
+  ParticleSet<2> ps;
+  const auto members = add_sand_block<2>(ps, Vec<2>(0.0, 0.0), Vec<2>(0.1, 0.05), dx, Vec<2>::Zero(), Vec<2>::Zero());
+  const double floor_top = 0.5 * dx - sand_wall_contact_distance(dx) - gap;
+  add_floor<2>(ps, -0.05, 0.15, floor_top, 2, dx, false);
+  const Vec<2> centre(0.05, 0.025);
+  for (const auto i : members) {
+    ps.v[i] = omega * Vec<2>(-(ps.x[i][1] - centre[1]), ps.x[i][0] - centre[0]);
+    ps.rigid[i] = 1;
+  }
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  Clusters clusters;
+  find_clusters(ps, nb, clusters);
+  BOOST_TEST_REQUIRE(clusters.size() == 1u);
+  std::vector<ClusterMotion<2>> motions = cluster_motions<2>(ps, clusters, dt);
+  const double contact = floor_top + sand_wall_contact_distance(dx);
+  double free_lowest = INFINITY, lowest = INFINITY;
+  for (const auto i : members) free_lowest = std::min(free_lowest, ps.x[i][1] + dt * rigid_velocity<2>(motions[0], ps.x[i])[1]);
+  WallContactBuffers<2> buffers;
+  constrain_clusters_by_walls<2>(ps, nb, clusters, motions, dt, 0.0, buffers);
+  for (const auto i : members) lowest = std::min(lowest, ps.x[i][1] + dt * rigid_velocity<2>(motions[0], ps.x[i])[1]);
+  BOOST_TEST_MESSAGE("lowest member after the step, above the contact distance: free " << free_lowest - contact
+                                                                                       << " m, constrained " << lowest - contact << " m");
+  BOOST_TEST(free_lowest < contact - 1e-4);  // unconstrained, the corner would pass the contact distance
+  BOOST_TEST(lowest >= contact - 1e-12);
 }
 
 BOOST_AUTO_TEST_CASE(rigid_block_landing_on_a_floor_obeys_coulomb_at_the_contact) {

@@ -82,7 +82,8 @@ void mark_participant(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, cons
 /// flow divergence-free (solve_harmonic_pressure). The conditions:
 /// - in contact with free water (a water neighbour): pore-water pressure P^p − P^c = the pond's
 ///   pressure (set_contact_pressure);
-/// - at a seepage face (empty space below or along v_p, exposure): P^p = 0, the atmosphere's;
+/// - at a seepage face or a top open to the air (empty space below, above or along v_p,
+///   exposure): P^p = 0, the atmosphere's;
 /// - unsaturated: P^p = 0, the pore water being at the capillary suction −P^c (eq 23);
 /// - moving (deformable) sand: Lenaerts' eq 25;
 /// - saturated, fixed, none of the above: harmonic, solved.
@@ -242,20 +243,23 @@ void pore_velocities(ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porou
 /// kPlacementGap spacings of it, counting the water particles as each says.
 struct FreePlaces {
   bool below = true;           ///< one spacing below i (along g), counting no water
+  bool above = true;           ///< one spacing above i (against g), and no water in i's neighbourhood
   bool target_solid = true;    ///< at the target, counting no water
   bool target_staying = true;  ///< at the target, counting the water not moving away along v_p
   bool target_all = true;      ///< at the target, counting all water
 };
 
-/// FreePlaces of i in one pass over its neighbours (`below` and `target` may be null: not asked).
+/// FreePlaces of i in one pass over its neighbours (`below`, `above` and `target` may be null: not
+/// asked).
 template <int D>
 FreePlaces free_places(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::size_t i, const Vec<D>* below,
-                       const Vec<D>* target, double s, const Vec<D>& away) {
+                       const Vec<D>* above, const Vec<D>* target, double s, const Vec<D>& away) {
   FreePlaces f;
   const double gap = kPlacementGap * s;
   for (const auto j : nb.of(i)) {
     const bool is_water = ps.phase_of(j) == Phase::Water;
     if (below && !is_water && !((ps.x[j] - *below).norm() >= gap)) f.below = false;
+    if (above && (is_water || !((ps.x[j] - *above).norm() >= gap))) f.above = false;
     if (!target || (ps.x[j] - *target).norm() >= gap) continue;
     f.target_all = false;
     if (!is_water) f.target_solid = false;
@@ -270,7 +274,12 @@ FreePlaces free_places(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std
 /// does not stop the seepage: the store waits until the place is free, w.placeable). A particle
 /// with a place one spacing along v_p or below it (along g) that holds no solid or porous particle
 /// (water dripping there does not count) is on a seepage face (w.seepage: its pore-water pressure
-/// is the atmosphere's, pressure_role), whatever v_p is now.
+/// is the atmosphere's, pressure_role), whatever v_p is now; so is one with a free place one
+/// spacing above it (against g) and no water in its neighbourhood: its pores open to the air
+/// there, which enters as the bed drains (a saturated bed without a pond drains at the Darcy flux,
+/// test porous/a_saturated_bed_drains_at_the_darcy_flux; a no-flow top would hold its water up).
+/// A pond within the support still covers it, though SPH holds the pond's bottom row off the
+/// bed's top by more than the contact distance at times.
 template <int D>
 void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const PorousParams& p, const Vec<D>& g,
               PorousWork<D>& w) {
@@ -287,10 +296,11 @@ void exposure(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, const Porous
     if (ps.capillary[i] > p.fluid_density * g.norm() * s) continue;
     const bool down = g.norm() > 0.0;
     const Vec<D> below = down ? Vec<D>(ps.x[i] + (s / g.norm()) * g) : ps.x[i];
+    const Vec<D> above = down ? Vec<D>(ps.x[i] - (s / g.norm()) * g) : ps.x[i];
     if (speed > 0.0) w.target[i] = ps.x[i] + (s / speed) * ps.pore_velocity[i];
-    const FreePlaces f = free_places(ps, nb, i, down ? &below : nullptr, speed > 0.0 ? &w.target[i] : nullptr, s,
-                                     ps.pore_velocity[i]);
-    w.seepage[i] = down && f.below;
+    const FreePlaces f = free_places(ps, nb, i, down ? &below : nullptr, down ? &above : nullptr,
+                                     speed > 0.0 ? &w.target[i] : nullptr, s, ps.pore_velocity[i]);
+    w.seepage[i] = down && (f.below || f.above);
     if (speed <= 0.0) continue;
     w.exposed[i] = f.target_staying;
     w.placeable[i] = w.exposed[i] && f.target_all;

@@ -13,7 +13,7 @@ namespace sc {
 
 template <int D>
 double lattice_mass(double rho0, double dx, double h, kernel::DensityKernel kind) {
-  return rho0 / lattice_sum<D>(dx, h, [&](const Vec<D>&, double r) { return kernel::density_kernel<D>(kind, r, h); });
+  return rho0 / lattice_density_sum<D>(dx, h, kind);
 }
 
 template <int D>

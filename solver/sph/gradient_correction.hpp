@@ -96,7 +96,7 @@ Mat<D> moment_matrix(const ParticleSet<D>& ps, const NeighbourGrid<D>& nb, std::
 template <int D>
 double full_moment(double support_ratio, kernel::DensityKernel kind) {
   const double h = support_ratio;  // in units of dx
-  const double density = lattice_sum<D>(1.0, h, [&](const Vec<D>&, double r) { return kernel::density_kernel<D>(kind, r, h); });
+  const double density = lattice_density_sum<D>(1.0, h, kind);
   const double moment = lattice_sum<D>(1.0, h, [&](const Vec<D>& d, double r) {
     return r > 0.0 ? -kernel::spiky_derivative<D>(r, kernel::Support<D>(h)) / r * d[0] * d[0] : 0.0;
   });

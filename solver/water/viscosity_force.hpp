@@ -5,15 +5,15 @@
 
 namespace sc {
 
+/// The factor μ V_i V_j ∇̄²W of (v_j − v_i) in f_ij, for the averaged Laplacian `lap` [thesis eq. 5].
+inline double viscosity_pair_coefficient(double mu, double Vi, double Vj, double lap) { return mu * Vi * Vj * lap; }
+
 /// Viscosity force on particle i from j [thesis eq. 5] (Müller 2003), in newtons:
 ///   f_ij = μ V_i V_j (v_j − v_i) (∇²W_visc(r, h_i) + ∇²W_visc(r, h_j))/2.
 /// Correct as printed; symmetric in i and j, so f_ji = −f_ij, and it only damps relative motion.
 /// `mu` [Pa s] is the viscosity the pair force carries: the case's μ divided by the lattice's
 /// viscosity moment (WaterParams::pair_viscosity), so that Σ_j f_ij = μ V_i ∇²v on the case's
 /// lattice. `si`: the support h_i.
-/// The factor μ V_i V_j ∇̄²W of (v_j − v_i) in f_ij, for the averaged Laplacian `lap` [thesis eq. 5].
-inline double viscosity_pair_coefficient(double mu, double Vi, double Vj, double lap) { return mu * Vi * Vj * lap; }
-
 template <int D>
 inline Vec<D> viscosity_pair_force(double mu, double Vi, double Vj, const Vec<D>& vi, const Vec<D>& vj,
                                    double r, const kernel::Support<D>& si, double hj) {
@@ -32,7 +32,7 @@ inline Vec<D> viscosity_pair_force(double mu, double Vi, double Vj, const Vec<D>
 template <int D>
 double viscosity_moment(double support_ratio, kernel::DensityKernel kind) {
   const double h = support_ratio;  // in units of dx
-  const double density = lattice_sum<D>(1.0, h, [&](const Vec<D>&, double r) { return kernel::density_kernel<D>(kind, r, h); });
+  const double density = lattice_density_sum<D>(1.0, h, kind);
   const double moment = lattice_sum<D>(1.0, h, [&](const Vec<D>& d, double r) {
     return d[0] * d[0] * kernel::viscosity_laplacian<D>(r, h);
   });

@@ -46,7 +46,8 @@ class WaterForceOn {
   WaterForceOn(const ParticleSet<D>& ps, std::size_t i, const WaterParams& params, const MatArray<D>& correction,
                bool corrected, double kappa_prime)
       : ps_(ps), i_(i), params_(params), correction_(correction), corrected_(corrected), kappa_prime_(kappa_prime),
-        Vi_(ps.volume(i)), Pi_(ps.p[i]), mi_(ps.m[i]), vi_(ps.v[i]), si_(ps.h[i]) {}
+        Vi_(ps.volume(i)), Pi_(ps.p[i]), mi_(ps.m[i]), mu_(params.pair_viscosity(params.viscosity)), vi_(ps.v[i]),
+        si_(ps.h[i]) {}
 
   void add(const NeighbourBatch<D>& b) {
     alignas(32) double h[NeighbourBatch<D>::kSize];
@@ -69,7 +70,7 @@ class WaterForceOn {
       f_ += corrected_ ? corrected_pair_term<D>(correction_[i_], correction_[j], fp) : fp;
       const bool boundary = ps_.phase_of(j) == Phase::Boundary;
       if (!boundary || ps_.rough[j])
-        f_ += viscosity_pair_force<D>(params_.pair_viscosity(params_.viscosity), Vi_, Vj, vi_, ps_.v[j], r, si_, ps_.h[j]);
+        f_ += viscosity_pair_force<D>(mu_, Vi_, Vj, vi_, ps_.v[j], r, si_, ps_.h[j]);
       if (!boundary && kappa_prime_ != 0.0)
         f_ += surface_tension_pair_force<D>(kappa_prime_, mi_, ps_.m[j], d, r, si_, ps_.h[j]);
     }
@@ -89,7 +90,7 @@ class WaterForceOn {
       t.cohesive[k] = !boundary && tension ? 1.0 : 0.0;
     }
     const kernel::Support<D> si = si_;
-    const double Vi = Vi_, Pi = Pi_, mi = mi_, mu = params_.pair_viscosity(params_.viscosity), kappa = kappa_prime_;
+    const double Vi = Vi_, Pi = Pi_, mi = mi_, mu = mu_, kappa = kappa_prime_;
     // Müller's half as a constant of the loop's code (a flag read in the loop stops it vectorising).
     const auto factors = [&](auto half) {
       for (int k = 0; k < b.size; ++k) {
@@ -128,7 +129,7 @@ class WaterForceOn {
   const WaterParams& params_;
   const MatArray<D>& correction_;
   const bool corrected_;
-  const double kappa_prime_, Vi_, Pi_, mi_;
+  const double kappa_prime_, Vi_, Pi_, mi_, mu_;  // mu_: the pair viscosity of eq 5
   const Vec<D> vi_;
   const kernel::Support<D> si_;
   Vec<D> f_ = Vec<D>::Zero();
