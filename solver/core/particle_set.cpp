@@ -199,7 +199,7 @@ void ParticleSet<D>::refresh_from(const ParticleSet& other) {
     }
     visit_fields_with(other, [&](auto& field, const auto& src) {
       const void* f = &src;
-      if (f == &other.rho || f == &other.p || f == &other.density_offset)  // change at the walls too
+      if (f == &other.rho || f == &other.p)  // change at the walls too
         std::copy(src.begin() + lo, src.begin() + hi, field.begin() + lo);
       else
         for (const auto& [begin, end] : runs) std::copy(src.begin() + begin, src.begin() + end, field.begin() + begin);

@@ -122,10 +122,11 @@ class ParticleSet {
   /// Makes this a copy of `other` (as operator=, reusing this set's storage), copying the fields in
   /// parallel: the blow-up guard copies the state every step.
   void copy_from(const ParticleSet& other);
-  /// copy_from for a set that already holds `other`'s values except for the density, pressure and
-  /// density offset of its inert particles (inert() in both sets), and has its layout (layout()):
-  /// copies the other particles in full and those three fields of the inert ones. A step changes
-  /// nothing else of a fixed wall particle, and walls are most of a tank scene's particles.
+  /// copy_from for a set that already holds `other`'s values except for the density and pressure of
+  /// its inert particles (inert() in both sets), and has its layout (layout()): copies the other
+  /// particles in full and those two fields of the inert ones. A step changes nothing else of a
+  /// fixed wall particle (its density offset stays 0: adaptive/density_blend.hpp sets only moving
+  /// particles'), and walls are most of a tank scene's particles.
   void refresh_from(const ParticleSet& other);
   /// Changes whenever the particles are reordered, removed or added (permute, compact, append,
   /// truncate) to a value no other order of particles in the process has had.
