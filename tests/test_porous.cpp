@@ -718,6 +718,27 @@ BOOST_AUTO_TEST_CASE(pond_pressure_is_the_weight_of_the_water_column) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(a_gap_that_water_beside_fills_does_not_cut_the_column) {
+  // A pond three columns wide and ten rows deep whose middle column misses two particles (rows
+  // 5 and 6 from the top, the gaps a disordered pond leaves in a column one spacing wide): the
+  // water beside the hole carries the weight on, so each middle particle carries the middle
+  // particles above it, ρ^f g s (k + 1/2), the four above the hole included; a column with no
+  // water beside its gap (pond_pressure_is_the_weight_of_the_water_column) still ends there.
+  const PorousParams p = test_params();
+  ParticleSet<2> ps;
+  add_block(ps, p, Phase::Water, {0.0, 0.0}, {0.01, 0.1}, 0.0);
+  add_block(ps, p, Phase::Water, {0.02, 0.0}, {0.03, 0.1}, 0.0);
+  add_block(ps, p, Phase::Water, {0.01, 0.0}, {0.02, 0.04}, 0.0);
+  add_block(ps, p, Phase::Water, {0.01, 0.06}, {0.02, 0.1}, 0.0);
+  const std::vector<double> P = water_column_pressure(ps, kDx, p.water_mass, kRho, 9.81);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    double k = 0.0;  // particles above i in its column
+    for (std::size_t j = 0; j < ps.size(); ++j)
+      k += std::abs(ps.x[j][0] - ps.x[i][0]) < 0.5 * kDx && ps.x[j][1] > ps.x[i][1];
+    BOOST_TEST(P[i] == kRho * 9.81 * kDx * (k + 0.5), boost::test_tools::tolerance(1e-12));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(wet_rest_density_eq_31) {
   // [thesis eq. 31] dry gives ρ0; a saturated bulk gives ρ0 + φ ρ^f.
   BOOST_TEST(wet_rest_density(1600.0, 0.0, 0.4, 1000.0) == 1600.0);

@@ -35,6 +35,35 @@ struct ColumnMember {
   std::uint64_t at;
 };
 
+/// Heights of the water in column `cell` and in the columns beside it (3^(D-1) columns), from
+/// the top: in a disordered pond one column of width s misses a particle now and then, so its own
+/// heights show gaps that its neighbours fill.
+template <int D, class Columns>
+std::vector<double> heights_around(const Columns& columns, const std::array<long, D - 1>& cell) {
+  std::vector<double> z;
+  const int beside = D == 2 ? 3 : 9;
+  for (int k = 0; k < beside; ++k) {
+    std::array<long, D - 1> c = cell;
+    for (int a = 0, rest = k; a < D - 1; ++a, rest /= 3) c[a] += rest % 3 - 1;
+    const auto it = columns.find(c);
+    if (it == columns.end()) continue;
+    for (const auto& member : it->second) z.push_back(std::get<0>(member));
+  }
+  std::sort(z.begin(), z.end(), std::greater<>());
+  return z;
+}
+
+/// Whether `around` (heights from the top, `upper` and `lower` among them) leaves an empty height
+/// of more than `gap` between `upper` and `lower`: no water around a column's gap, so the water
+/// above it does not rest on the water below (a porous bed between them).
+bool empty_between(const std::vector<double>& around, double upper, double lower, double gap) {
+  auto k = std::lower_bound(around.begin(), around.end(), upper, std::greater<>());
+  const auto end = std::upper_bound(around.begin(), around.end(), lower, std::greater<>());
+  for (; k != end && k + 1 != end; ++k)
+    if (*k - *(k + 1) > gap) return true;
+  return false;
+}
+
 /// Column pressures of `members` (every water particle of the scene), by member.
 template <int D>
 std::vector<std::pair<std::uint64_t, double>> column_pressures(const std::vector<ColumnMember<D>>& members, double spacing,
@@ -46,9 +75,11 @@ std::vector<std::pair<std::uint64_t, double>> column_pressures(const std::vector
   const double per_mass = fluid_density * gravity * spacing / full_mass;
   for (auto& [cell, column] : columns) {
     std::sort(column.begin(), column.end(), std::greater<>());  // from the top; equal heights: later in storage first
+    const std::vector<double> around = heights_around<D>(columns, cell);
     double above = 0.0, last = INFINITY;
     for (const auto& [z, at, m] : column) {
-      if (last - z > kColumnGap * spacing) above = 0.0;  // a gap: the water above does not rest on this
+      if (last - z > kColumnGap * spacing && empty_between(around, last, z, kColumnGap * spacing))
+        above = 0.0;  // a gap with no water beside it: the water above does not rest on this
       P.emplace_back(at, per_mass * (above + 0.5 * m));
       above += m;
       last = z;

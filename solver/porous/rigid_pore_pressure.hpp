@@ -38,8 +38,11 @@ enum class PressureRole : std::uint8_t {
 /// vertical column of width s (the spacing; cells of the horizontal axes, gravity along the last
 /// axis); a full particle (mass m0, the lattice mass that makes the SPH density ρ^f) is one
 /// spacing of water height, a shrunken one a fraction of it. A gap of more than 1.5 spacings
-/// ends a column (water dripping under a porous bed does not carry the pond above the bed). Used instead of the weakly compressible SPH pressure where water meets a rigid porous
-/// body: the pore water is incompressible and feels the pond's weight, not the acoustic noise of
+/// with no water beside it either (in the columns next to this one) ends a column: water dripping
+/// under a porous bed does not carry the pond above the bed, while the gaps that a disordered pond
+/// leaves in a column one spacing wide, which its neighbours fill, do not cut the pond's weight
+/// (test porous/a_gap_that_water_beside_fills_does_not_cut_the_column). Used instead of the
+/// weakly compressible SPH pressure where water meets a rigid porous body: the pore water is incompressible and feels the pond's weight, not the acoustic noise of
 /// the Tait pressure (a few hundred Pa at c = 15 m/s, as much as the head of a shallow pond).
 /// Zero for particles that are not water.
 /// `ranks`: the scene is decomposed; every rank's water particles make the columns (gathered, each
