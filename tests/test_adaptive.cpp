@@ -1,5 +1,6 @@
 // Adaptive sampling: split/merge identities, hysteresis, stable pairing, elfs of an analytic slab.
 #include <boost/test/unit_test.hpp>
+#include <algorithm>
 
 #include <cmath>
 #include <random>
@@ -83,6 +84,16 @@ void check_same_particle(const ParticleSet<D>& a, std::size_t i, ParticleSet<D>&
       }
     });
   });
+}
+
+/// Neighbours for adapt_pass and pair_merge_candidates: every particle of ps, whatever i.
+template <int D>
+auto every_particle(const ParticleSet<D>& ps) {
+  return [&ps](std::size_t) {
+    std::vector<std::size_t> j(ps.size());
+    for (std::size_t k = 0; k < j.size(); ++k) j[k] = k;
+    return j;
+  };
 }
 
 template <int D>
@@ -309,11 +320,7 @@ BOOST_AUTO_TEST_CASE(merge_pairing_is_nearest_same_level_in_index_order) {
   ps.m[4] = 2 * m;  // another level: never paired with the others
   ps.level[4] = 3;
   AdaptiveParams p = params_for<2>(0.05);
-  auto all = [&](std::size_t) {
-    std::vector<std::size_t> j(ps.size());
-    for (std::size_t k = 0; k < j.size(); ++k) j[k] = k;
-    return j;
-  };
+  const auto all = every_particle(ps);
   const auto pairs = pair_merge_candidates<2>(ps, {0, 1, 2, 3, 4}, p, all);
   BOOST_TEST_REQUIRE(pairs.size() == 2u);
   BOOST_TEST((pairs[0] == std::pair<std::size_t, std::size_t>(0, 1)));
@@ -331,11 +338,7 @@ BOOST_AUTO_TEST_CASE(adapt_pass_conserves_totals_and_reports_energy) {
   }
   const Vec<2> p0 = momentum(ps), c0 = centre_of_mass(ps);
   const double m0 = total(ps.m), w0 = total(ps.absorbed), e0 = kinetic(ps);
-  auto all = [&](std::size_t) {
-    std::vector<std::size_t> j(ps.size());
-    for (std::size_t k = 0; k < j.size(); ++k) j[k] = k;
-    return j;
-  };
+  const auto all = every_particle(ps);
   const AdaptStats s = adapt_pass<2>(ps, elfs, p, all);
   BOOST_TEST(ps.compact());
   BOOST_TEST(s.splits == 2u);
@@ -346,6 +349,57 @@ BOOST_AUTO_TEST_CASE(adapt_pass_conserves_totals_and_reports_energy) {
   BOOST_TEST(close(momentum(ps), p0));
   BOOST_TEST(close(centre_of_mass(ps), c0));
   BOOST_TEST(s.energy_removed == e0 - kinetic(ps), tt::tolerance(1e-12));
+}
+
+// A pass over particles that all ask to merge (and one that asks to split), r0 = 0.01 m, so a
+// level-1 particle merges within 1.5 r1 = 0.0212 m: water 0 pairs with its nearest partner 2
+// (0.010 m away), not with 1 (0.018 m); a level-0 and a level-1 water particle, water beside
+// sand, and two wall particles side by side are left alone; the level-2 particle splits into two
+// level-1 children split_offset r1 from its place on either side. Nothing else changes.
+BOOST_AUTO_TEST_CASE(a_pass_merges_nearest_partners_of_one_level_and_phase_and_splits_by_the_childs_size) {
+  ParticleSet<2> ps;
+  const AdaptiveParams p = params_for<2>(0.01);
+  const double m1 = 2 * 0.01 * 0.01 * 1000.0;  // level 1
+  struct Seed { double x; std::uint8_t level; Phase phase; double elfs; };
+  const std::vector<Seed> seeds{{0.0, 1, Phase::Water, 1.0},   {0.018, 1, Phase::Water, 1.0},
+                                {0.010, 1, Phase::Water, 1.0}, {0.1, 0, Phase::Water, 1.0},
+                                {0.105, 1, Phase::Water, 1.0}, {0.2, 1, Phase::Water, 1.0},
+                                {0.205, 1, Phase::Sand, 1.0},  {0.3, 1, Phase::Boundary, 1.0},
+                                {0.305, 1, Phase::Boundary, 1.0}, {0.4, 2, Phase::Water, 1e-6}};
+  std::vector<double> elfs;
+  for (const Seed& seed : seeds) {
+    const double m = m1 * std::pow(2.0, seed.level - 1);
+    const std::size_t i = add_particle<2>(ps, m, Vec<2>(seed.x, 0.0), Vec<2>::Zero(), 0.0, 0.0, seed.level);
+    ps.phase[i] = static_cast<std::uint8_t>(seed.phase);
+    elfs.push_back(seed.elfs);
+  }
+  const auto all = every_particle(ps);
+  const AdaptStats s = adapt_pass<2>(ps, elfs, p, all);
+  BOOST_TEST(ps.compact());
+  BOOST_TEST(s.merges == 1u);
+  BOOST_TEST(s.splits == 1u);
+  BOOST_TEST_REQUIRE(ps.size() == 10u);
+  std::vector<Vec<2>> children;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const double x = ps.x[i][0];
+    BOOST_TEST_INFO("particle at " << ps.x[i].transpose() << ", level " << int(ps.level[i]));
+    if (x > 0.39) {  // a child of the split
+      BOOST_TEST(ps.level[i] == 1);
+      children.push_back(ps.x[i]);
+    } else if (x > 0.004 && x < 0.006) {  // the merged pair 0 and 2
+      BOOST_TEST(ps.level[i] == 2);
+      BOOST_TEST(ps.x[i][0] == 0.005, tt::tolerance(1e-12));
+    } else {  // left alone: its seed's place and level
+      const auto seed = std::find_if(seeds.begin(), seeds.end(), [&](const Seed& q) { return q.x == x; });
+      BOOST_TEST_REQUIRE((seed != seeds.end() && seed != seeds.begin() && seed->x != 0.010));
+      BOOST_TEST(ps.level[i] == seed->level);
+      BOOST_TEST(ps.x[i][1] == 0.0);
+    }
+  }
+  BOOST_TEST_REQUIRE(children.size() == 2u);
+  const double r1 = std::sqrt(2.0) * 0.01;
+  BOOST_TEST((children[0] - children[1]).norm() == 2.0 * p.split_offset * r1, tt::tolerance(1e-12));
+  BOOST_TEST(close(0.5 * (children[0] + children[1]), Vec<2>(0.4, 0.0)));
 }
 
 BOOST_AUTO_TEST_CASE(elfs_of_a_slab_2d) { slab_elfs_is_half_thickness_plus_depth<2>(); }
