@@ -803,7 +803,7 @@ std::unique_ptr<DemMethod<2>> wet_adapter() {
 /// wet_sand_collapse run by DEM at 0.01 m: the grains and the parameters DEM gives a case.
 struct CaseByDem {
   static constexpr double dx = 0.01;
-  CaseSpec spec = load_case(std::string(SANDCASTLE_SOURCE_DIR) + "/cases/wet_sand_collapse/case.json");
+  CaseSpec spec = load_case(SANDCASTLE_SOURCE_DIR "/cases/wet_sand_collapse/case.json");
   std::unique_ptr<Method<2>> run = make_dem_method<2>(spec, dx);
   const DemMethod<2>& dem() const { return dynamic_cast<const DemMethod<2>&>(*run); }
 };
