@@ -478,7 +478,9 @@ BOOST_AUTO_TEST_CASE(the_yield_test_sees_the_velocity_the_steps_forces_give) {
   // acceleration a_x = A y: its interior reads the strain rate of v_x = Δt A y by the SPH gradient
   // of [thesis eq. 20], λ Δt A/√2 with λ the lattice's gradient moment (gradient_moment: about 0.7
   // at h = 2 dx, the gradient being uncorrected), within 1e-9, and yields (its rigid stress exceeds
-  // what friction holds); without the forces it stays rigid.
+  // what friction holds), with the flowing stress of [thesis eq. 8] for the default φ = 30°,
+  // |σ|_F = √3 sin φ p (μ_f = sin φ, SandParams::sin_phi) at its granular pressure p, within 1e-12;
+  // without the forces it stays rigid.
   const double dt = 1e-4, A = 2e4;
   for (const bool shear : {false, true}) {
     ParticleSet<2> ps = sand_lattice(16, 0.01);
@@ -497,7 +499,10 @@ BOOST_AUTO_TEST_CASE(the_yield_test_sees_the_velocity_the_steps_forces_give) {
       ++interior;
       rigid += ps.rigid[i];
       const double lambda = gradient_moment(ps, nb, i)(1, 1);
-      if (shear) BOOST_TEST(ps.strain_rate[i] == lambda * dt * A / std::sqrt(2.0), tt::tolerance(1e-9));
+      if (!shear) continue;
+      BOOST_TEST(ps.strain_rate[i] == lambda * dt * A / std::sqrt(2.0), tt::tolerance(1e-9));
+      const double p = granular_pressure(100.0, ps.rho0[i], 9.81, rest_spacing<2>(ps.m[i], ps.rho0[i]));
+      BOOST_TEST(stress[i].norm() == std::sqrt(3.0) * std::sin(pi / 6.0) * p, tt::tolerance(1e-12));
     }
     BOOST_TEST_MESSAGE((shear ? "sheared" : "at rest") << ": " << rigid << " of " << interior << " interior particles rigid");
     BOOST_TEST(interior > 50);
