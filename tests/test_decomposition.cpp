@@ -111,10 +111,37 @@ Printed printed(const test::ProcessResult& r) {
   return p;
 }
 
+/// A checkpoint to write in a run over 3 ranks (at step `every`) and the rank counts to resume it on;
+/// none when `every` is 0.
+struct Resume {
+  int every = 0;
+  std::vector<int> on;
+};
+
+/// The checkpoint of step `every` in the output folder `dir`, resumed by the case file on each of
+/// `resume_on` ranks: every resumed run ends with the checksum `uninterrupted`. Returns what each printed.
+std::vector<Printed> resumed_runs(const std::string& case_file, const std::string& dir, const Resume& resume,
+                                  const std::string& uninterrupted) {
+  char name[32];
+  std::snprintf(name, sizeof name, "checkpoint_%08d.ckpt", resume.every);
+  const std::string ckpt = dir + "/" + name;
+  BOOST_TEST_REQUIRE(fs::exists(ckpt));
+  std::vector<Printed> out;
+  for (const int ranks : resume.on) {
+    const test::ProcessResult resumed = sandcastle(ranks, {"run", case_file, "--out", dir + "_resumed" + std::to_string(ranks), "--resume", ckpt});
+    BOOST_TEST_INFO("resumed on " << ranks << ": " << resumed.out);
+    out.push_back(printed(resumed));
+    BOOST_TEST(out.back().checksum == uninterrupted);
+  }
+  return out;
+}
+
 /// Runs the case file over 1, 2 and 3 ranks and checks that every decomposed run ends in the
 /// one-process state: the same checksum and the same final frame (every particle field, in the
-/// one-process order), with the same exit code. Returns what each printed (1, 2, 3 ranks).
-std::vector<Printed> runs_agree(const std::string& case_file) {
+/// one-process order), with the same exit code. With a `resume`, the 3-rank run also writes that
+/// checkpoint, which resumes on each of its rank counts with the one-process checksum. Returns what
+/// each printed (1, 2, 3 ranks, then each resumed run).
+std::vector<Printed> runs_agree(const std::string& case_file, const Resume& resume = {}) {
   const std::string root = test::fresh_path("decomposed");
   std::vector<Printed> out;
   std::string frame;
@@ -122,7 +149,9 @@ std::vector<Printed> runs_agree(const std::string& case_file) {
   std::size_t runs = 0;  // progress lines ending a run: the case's and its twin's (a dry twin), if any
   for (const int ranks : {1, 2, 3}) {
     const std::string dir = root + "/n" + std::to_string(ranks);
-    const test::ProcessResult r = sandcastle(ranks, {"run", case_file, "--out", dir});
+    std::vector<std::string> args{"run", case_file, "--out", dir};
+    if (ranks == 3 && resume.every > 0) args.insert(args.end(), {"--checkpoint-every", std::to_string(resume.every)});
+    const test::ProcessResult r = sandcastle(ranks, args);
     out.push_back(printed(r));
     BOOST_TEST_INFO(ranks << " ranks: " << r.out << r.err);
     BOOST_TEST_REQUIRE(out.back().checksum.size() == 16u);
@@ -139,6 +168,10 @@ std::vector<Printed> runs_agree(const std::string& case_file) {
     BOOST_TEST(out.back().checksum == out.front().checksum);
     BOOST_TEST((final_frame == frame), "final.vtu differs from the one-process run's");
   }
+  if (resume.every > 0) {
+    const std::vector<Printed> resumed = resumed_runs(case_file, root + "/n3", resume, out.front().checksum);
+    out.insert(out.end(), resumed.begin(), resumed.end());
+  }
   fs::remove_all(root);
   return out;
 }
@@ -152,16 +185,8 @@ std::vector<Printed> checkpoint_resumes(const std::string& case_file, int every,
   const test::ProcessResult three = sandcastle(3, {"run", case_file, "--out", root + "/three", "--checkpoint-every", std::to_string(every)});
   std::vector<Printed> out{printed(three)};
   BOOST_TEST(out[0].checksum == printed(straight).checksum);
-  char name[32];
-  std::snprintf(name, sizeof name, "checkpoint_%08d.ckpt", every);
-  const std::string ckpt = root + "/three/" + name;
-  BOOST_TEST_REQUIRE(fs::exists(ckpt));
-  for (const int ranks : resume_on) {
-    const test::ProcessResult resumed = sandcastle(ranks, {"run", case_file, "--out", root + "/resumed" + std::to_string(ranks), "--resume", ckpt});
-    BOOST_TEST_INFO("resumed on " << ranks << ": " << resumed.out);
-    out.push_back(printed(resumed));
-    BOOST_TEST(out.back().checksum == printed(straight).checksum);
-  }
+  const std::vector<Printed> resumed = resumed_runs(case_file, root + "/three", {every, resume_on}, printed(straight).checksum);
+  out.insert(out.end(), resumed.begin(), resumed.end());
   fs::remove_all(root);
   return out;
 }
@@ -424,18 +449,19 @@ BOOST_AUTO_TEST_CASE(porous_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterr
 // Sand over ranks (sand/clusters_over_ranks.hpp): the sand case `name`, shortened to end at `end`
 // [s], ends bitwise in the one-process state at 2 and 3 ranks, while at 2 ranks sand particles
 // migrate and rigid clusters have members on both ranks (their sums gathered in the one-process order).
-void sand_runs_agree(const std::string& name, double end, const json& patch = json::object()) {
+void sand_runs_agree(const std::string& name, double end, const json& patch = json::object(), const Resume& resume = {}) {
   const std::string file = shortened_case(name, end, patch);
-  const std::vector<Printed> p = runs_agree(file);
+  const std::vector<Printed> p = runs_agree(file, resume);
   BOOST_TEST(p[1].migrated > 0);
   BOOST_TEST(p[1].clusters_across > 0);
   fs::remove_all(fs::path(file).parent_path());
 }
 
 // The granular column collapsing over the floor: frictional stress and wall friction across the cut.
-BOOST_AUTO_TEST_CASE(column_collapse_over_2_and_3_ranks_is_the_one_process_run, *test::long_run()) {
+// Its checkpoint written by 3 ranks at step 400 resumes on 2 with the uninterrupted checksum.
+BOOST_AUTO_TEST_CASE(column_collapse_over_2_and_3_ranks_is_the_one_process_run_and_resumes_on_2, *test::long_run()) {
   if (!have_mpi()) return;
-  sand_runs_agree("column_collapse", 0.2);
+  sand_runs_agree("column_collapse", 0.2, json::object(), {400, {2}});
 }
 
 // The pile spreading to its angle of repose.
@@ -466,14 +492,6 @@ BOOST_AUTO_TEST_CASE(rigid_spin_3d_over_2_and_3_ranks_is_the_one_process_run, *t
   sand_runs_agree("rigid_spin_3d", 0.2);
 }
 
-// A checkpoint of a sand run written by 3 ranks resumes on 2 with the uninterrupted checksum.
-BOOST_AUTO_TEST_CASE(sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum, *test::long_run()) {
-  if (!have_mpi()) return;
-  const std::string file = shortened_case("column_collapse", 0.2);
-  checkpoint_resumes(file, 400);
-  fs::remove_all(fs::path(file).parent_path());
-}
-
 // Adaptive sampling (solver/adaptive/), shortened: the dam break whose deep water merges while its
 // front runs over the floor, and the forced cycles of split_merge (everything merged, then split
 // back). Every pass runs on the gathered scene on every rank; over 2 and 3 ranks the runs end
@@ -502,21 +520,24 @@ BOOST_AUTO_TEST_CASE(adaptive_runs_over_2_and_3_ranks_are_the_one_process_run, *
 // the held water in the sand's mass and in its rigid clusters) while the slabs cut the column, and
 // the water in the duck of thesis_duck (coarsened to keep the test short) likewise. The decomposed
 // runs end bitwise where the one process ends, with water particles absorbed next to a slab's
-// border (by particles another rank holds a halo copy of).
-BOOST_AUTO_TEST_CASE(wet_sand_over_2_and_3_ranks_is_the_one_process_run, *test::long_run()) {
+// border (by particles another rank holds a halo copy of). The column's checkpoint written by 3
+// ranks at step 600, after the sand absorbed water, resumes on 2 with the uninterrupted checksum
+// while the absorption goes on.
+BOOST_AUTO_TEST_CASE(wet_sand_over_2_and_3_ranks_is_the_one_process_run_and_resumes_on_2, *test::long_run()) {
   if (!have_mpi()) return;
   json duck = read_json_file(cases + "/thesis_duck/case.json")["meshes"];
   duck[0]["file"] = cases + "/meshes/duck.obj";  // the shortened case lies in another folder
   const json coarse = {{"meshes", duck}, {"tiers", {{"quick", {{"spacings", {0.02}}}}}}};
-  for (const auto& [name, end, patch] : std::vector<std::tuple<std::string, double, json>>{
-           {"wet_sand_collapse", 0.2, json::object()}, {"thesis_duck", 0.3, coarse}}) {
+  for (const auto& [name, end, patch, resume] : std::vector<std::tuple<std::string, double, json, Resume>>{
+           {"wet_sand_collapse", 0.2, json::object(), {600, {2}}}, {"thesis_duck", 0.3, coarse, {}}}) {
     BOOST_TEST_CONTEXT(name) {
       const std::string file = shortened_case(name, end, patch);
-      const std::vector<Printed> p = runs_agree(file);
+      const std::vector<Printed> p = runs_agree(file, resume);
       BOOST_TEST(p[1].migrated > 0);
       BOOST_TEST(p[1].removed > 0);
       BOOST_TEST(p[2].removed > 0);
       BOOST_TEST(p[2].at_border > 0);
+      if (resume.every > 0) BOOST_TEST(p[3].removed > 0);  // the absorption goes on after the resume
       fs::remove_all(fs::path(file).parent_path());
     }
   }
@@ -529,15 +550,6 @@ BOOST_AUTO_TEST_CASE(adaptive_checkpoint_of_3_ranks_resumes_on_2_with_the_uninte
   const json no_twin = {{"validation", {{"uniform_twin", nullptr}, {"metrics", {{"front_vs_uniform_rms", nullptr}}}}}};
   const std::string file = shortened_case("dam_break_adaptive", 0.1, no_twin);
   BOOST_TEST(checkpoint_resumes(file, 50)[1].removed > 0);  // passes go on after the resume
-  fs::remove_all(fs::path(file).parent_path());
-}
-
-// A wet sand checkpoint written by 3 ranks, after the sand absorbed water, resumes on 2 with the
-// uninterrupted checksum while the absorption goes on.
-BOOST_AUTO_TEST_CASE(wet_sand_checkpoint_of_3_ranks_resumes_on_2_with_the_uninterrupted_checksum, *test::long_run()) {
-  if (!have_mpi()) return;
-  const std::string file = shortened_case("wet_sand_collapse", 0.2);
-  BOOST_TEST(checkpoint_resumes(file, 600)[0].removed > 0);
   fs::remove_all(fs::path(file).parent_path());
 }
 

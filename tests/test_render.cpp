@@ -194,14 +194,24 @@ BOOST_AUTO_TEST_CASE(render_block_is_not_a_parameter) {
   BOOST_TEST(load_case(sphere_case(), "with.json").parameters_hash == load_case(without, "without.json").parameters_hash);
 }
 
-// The validation report shows every case: `validate` writes the finest run's frames and draws its
-// first, middle and last frame side by side into <case>/pictures/filmstrip.png (three 160 px wide
-// frames: 480 × 120), named in report.json; --no-pictures writes neither frames nor filmstrip; with
-// no ffmpeg on PATH the case says why in filmstrip_note and its status is unchanged. Fails when the
-// filmstrip is not drawn, drawn from other frames than the strip's, or its absence is silent.
-BOOST_AUTO_TEST_CASE(validate_draws_a_filmstrip_of_each_case, *boost::unit_test::precondition(FfmpegPresent())) {
+// The validation report shows every case: `validate` draws each observable's plot (PNG files named
+// in report.json's "plots") and report.html with those plots embedded; it writes the finest run's
+// frames and draws its first, middle and last frame side by side into <case>/pictures/filmstrip.png
+// (three 160 px wide frames: 480 × 120), named in report.json; --no-pictures writes neither frames
+// nor filmstrip; with no ffmpeg on PATH the case says why in filmstrip_note and its status is
+// unchanged. Fails when a plot, the page or the filmstrip is not drawn, the filmstrip is drawn from
+// other frames than the strip's, or its absence is silent. (CTest's validate.quick runs the quick
+// tier with --no-plots; this is where the drawing path is checked.)
+BOOST_AUTO_TEST_CASE(validate_draws_plots_and_a_filmstrip_of_each_case, *boost::unit_test::precondition(FfmpegPresent())) {
   std::string out;
   const json drawn = validate_tank({}, {"OMP_NUM_THREADS=1"}, out);
+  BOOST_TEST_REQUIRE(!drawn.at("plots").empty(), drawn.dump());
+  for (const auto& plot : drawn.at("plots")) {
+    int w = 0, h = 0;
+    rgb_pixels(out + "/" + plot.get<std::string>(), w, h);
+    BOOST_TEST((w > 0 && h > 0), plot);
+  }
+  BOOST_TEST(test::read_text(out + "/report.html").find("data:image/png;base64,") != std::string::npos);
   BOOST_TEST_REQUIRE(drawn.contains("filmstrip"), drawn.dump());
   BOOST_TEST(drawn.at("filmstrip") == "tank/pictures/filmstrip.png");
   int width = 0, height = 0;
