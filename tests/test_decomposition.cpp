@@ -16,13 +16,13 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <regex>
 #include <tuple>
 
 #include "core/particle_set.hpp"
 #include "io/json_reader.hpp"
 #include "parallel/decomposition.hpp"
 #include "support/long_run.hpp"
+#include "support/pattern.hpp"
 #include "support/process.hpp"
 #include "sweep.hpp"
 
@@ -75,9 +75,10 @@ std::string shortened_case(const std::string& name, double end, const json& patc
   return written_case(c, name);
 }
 
+/// Capture group 1 of the first match of `pattern` in `text`; empty when nothing matches.
 std::string match(const std::string& text, const std::string& pattern) {
-  std::smatch m;
-  return std::regex_search(text, m, std::regex(pattern)) ? m[1].str() : "";
+  const auto groups = test::Pattern(pattern).first_in(text);
+  return groups ? groups->at(0) : "";
 }
 
 std::size_t count(const std::string& text, const std::string& what) {
@@ -102,11 +103,10 @@ Printed printed(const test::ProcessResult& r) {
   if (!migrated.empty()) p.migrated = std::stol(migrated);
   const std::string across = match(r.out, "(\\d+) rigid clusters across ranks");
   if (!across.empty()) p.clusters_across = std::stol(across);
-  std::smatch m;
-  if (std::regex_search(r.out, m, std::regex("compactions: (\\d+) particles removed, (\\d+) added, (\\d+) of them"))) {
-    p.removed = std::stol(m[1].str());
-    p.added = std::stol(m[2].str());
-    p.at_border = std::stol(m[3].str());
+  if (const auto m = test::Pattern("compactions: (\\d+) particles removed, (\\d+) added, (\\d+) of them").first_in(r.out)) {
+    p.removed = std::stol(m->at(0));
+    p.added = std::stol(m->at(1));
+    p.at_border = std::stol(m->at(2));
   }
   return p;
 }

@@ -5,9 +5,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <regex>
 #include <set>
 #include <string>
+
+#include "support/pattern.hpp"
 
 namespace fs = std::filesystem;
 
@@ -26,12 +27,11 @@ const std::set<std::pair<std::string, std::string>> kCoupled = {{"dem", "simulat
 
 /// The project folders a file includes ("io" for #include "io/json_reader.hpp").
 std::vector<std::string> included_folders(const fs::path& file) {
-  static const std::regex include(R"(^\s*#include\s+"([a-z_]+)/)");
+  static const sc::test::Pattern include(R"(^\s*#include\s+"([a-z_]+)/)");
   std::vector<std::string> out;
   std::ifstream in(file);
-  std::smatch m;
   for (std::string line; std::getline(in, line);)
-    if (std::regex_search(line, m, include)) out.push_back(m[1]);
+    if (const auto groups = include.first_in(line)) out.push_back(groups->at(0));
   return out;
 }
 

@@ -3,10 +3,10 @@
 // ending bitwise equal to an uninterrupted run, crash-safe output under SIGKILL, and a state
 // checksum independent of the OpenMP thread count.
 #include <boost/test/unit_test.hpp>
-#include <regex>
 
 #include "io/checkpoint.hpp"
 #include "io/json_reader.hpp"
+#include "support/pattern.hpp"
 #include "support/process.hpp"
 
 namespace fs = std::filesystem;
@@ -46,11 +46,9 @@ void check_complete(const fs::path& file) {
 /// Every frame frames.pvd lists exists.
 void check_frames_listed_exist(const std::string& dir) {
   const std::string pvd = test::read_text(dir + "/frames.pvd");
-  const std::regex listed("file=\"([^\"]+)\"");
-  int count = 0;
-  for (auto it = std::sregex_iterator(pvd.begin(), pvd.end(), listed); it != std::sregex_iterator(); ++it, ++count)
-    BOOST_TEST(fs::exists(dir + "/" + (*it)[1].str()), (*it)[1].str() << " listed in frames.pvd");
-  BOOST_TEST(count > 0);
+  const std::vector<std::string> listed = test::Pattern("file=\"([^\"]+)\"").every_in(pvd);
+  for (const std::string& frame : listed) BOOST_TEST(fs::exists(dir + "/" + frame), frame << " listed in frames.pvd");
+  BOOST_TEST(!listed.empty());
 }
 
 /// True if a file is being written in `dir` (a temporary *.tmp.* file exists).
@@ -91,11 +89,11 @@ BOOST_AUTO_TEST_CASE(unstable_case_stops_with_exit_3_naming_step_and_particle) {
   const std::string out = test::fresh_path("unstable");
   const test::ProcessResult r = test::run_sandcastle({"run", cases_dir + "/unstable_step.json", "--out", out});
   BOOST_TEST(r.exit_code == 3);
-  const std::regex diagnostic(R"(blow-up at step (\d+), t = [0-9.e+-]+ s, particle (\d+) \((water|sand|boundary)\), field '(\w+)')");
-  std::smatch m;
-  BOOST_TEST_REQUIRE(std::regex_search(r.err, m, diagnostic), "diagnostic: " << r.err);
+  const auto m = test::Pattern(R"(blow-up at step (\d+), t = [0-9.e+-]+ s, particle (\d+) \((water|sand|boundary)\), field '(\w+)')")
+                     .first_in(r.err);
+  BOOST_TEST_REQUIRE(m.has_value(), "diagnostic: " << r.err);
   const Checkpoint last_good = read_checkpoint(out + "/last_good.ckpt");
-  BOOST_TEST(last_good.state.step == std::stol(m[1]) - 1);  // the state before the failing step
+  BOOST_TEST(last_good.state.step == std::stol(m->at(0)) - 1);  // the state before the failing step
   BOOST_TEST(fs::exists(out + "/last_good.vtu"));
   BOOST_TEST(r.err.find(out + "/last_good.ckpt") != std::string::npos);
 }
