@@ -6,7 +6,9 @@
 #include <omp.h>
 
 #include <boost/test/unit_test.hpp>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "core/errors.hpp"
@@ -487,30 +489,87 @@ BOOST_AUTO_TEST_CASE(slab_on_incline_sticks_or_slides) {
   BOOST_TEST(std::abs(slip / frictionless - 1.0) < 0.02);
 }
 
+// [Zhu-Bridson 2005: frictional stress] the strain rate of a cell, D = (∇u + ∇uᵀ)/2 on the MAC
+// grid (cell_strain_rate): a simple shear u_x = γ y, u_y = 0 has D_xy = D_yx = γ/2 and no normal
+// strain in every cell of a sand block, inside it (central differences of the cell-centred u_x of
+// the rows above and below, over 2Δx) and on its top and bottom rows (one-sided, over Δx); the
+// rigid turn u = ω × r has D = 0 everywhere. Fails when a difference is taken over the wrong width.
+BOOST_AUTO_TEST_CASE(cell_strain_rate_of_a_simple_shear_and_of_a_rigid_turn) {
+  const MacGrid<2> grid(Vec<2>::Zero(), Vec<2>(0.08, 0.08), 0.01);
+  const CellState<2> cells = box_cells<2>(grid, {2, 2}, {6, 6}, Cell::Sand, 2000.0);
+  const double gamma = 3.0, omega = 2.0;
+  FaceField<2> shear = grid.zero_faces(), turn = grid.zero_faces();
+  for (int a = 0; a < 2; ++a)
+    for (std::size_t k = 0; k < shear[a].size(); ++k) {
+      const Vec<2> x = grid.face_centre(a, MacGrid<2>::unflat(k, grid.face_dims(a)));
+      shear[a][k] = a == 0 ? gamma * x[1] : 0.0;
+      turn[a][k] = a == 0 ? -omega * x[1] : omega * x[0];
+    }
+  for (int i = 2; i < 6; ++i)
+    for (int j = 2; j < 6; ++j) {
+      BOOST_TEST_CONTEXT("cell " << i << ", " << j) {
+        const Mat<2> d = cell_strain_rate<2>(grid, cells, shear, {i, j});
+        BOOST_TEST(std::abs(d(0, 1) - 0.5 * gamma) < 1e-12 * gamma);
+        BOOST_TEST(std::abs(d(1, 0) - 0.5 * gamma) < 1e-12 * gamma);
+        BOOST_TEST(std::abs(d(0, 0)) + std::abs(d(1, 1)) < 1e-12 * gamma);
+        BOOST_TEST(cell_strain_rate<2>(grid, cells, turn, {i, j}).norm() < 1e-12 * omega);
+      }
+    }
+}
+
+/// A flowing sand layer on the floor of a 2-D grid (Δx = 0.01 m, ρ = 2000; 8 cells wide, 4 deep,
+/// air above and beside it) whose cells of row r carry the shear stress τ_xy = τ_yx = shear(r), at
+/// rest: the face velocities after one step (Δt) of apply_frictional_stress.
+FaceField<2> layer_pushed_by_shear(const MacGrid<2>& grid, const std::function<double(int)>& shear, double dt) {
+  const CellState<2> cells = box_cells<2>(grid, {4, 0}, {12, 4}, Cell::Sand, 2000.0);
+  SandCells<2> sand;
+  sand.yielding.assign(grid.cell_count(), 0);
+  sand.rigid.assign(grid.cell_count(), 0);
+  sand.stress.assign(grid.cell_count(), Mat<2>::Zero());
+  for (std::size_t k = 0; k < grid.cell_count(); ++k)
+    if (is_fluid(cells.label[k])) {
+      const double s = shear(MacGrid<2>::unflat(k, grid.n)[1]);
+      sand.yielding[k] = 1;
+      sand.stress[k] << 0.0, s, s, 0.0;
+    }
+  FaceField<2> u = grid.zero_faces();
+  apply_frictional_stress<2>(grid, cells, sand, dt, u);
+  return u;
+}
+
 // [Zhu-Bridson 2005: frictional stress]: a sand layer on the floor (4 cells deep, air above and
 // beside it) under a uniform shear stress τ_xy = s gets no force inside; the x-faces of its bottom
 // and top rows get ±Δt s/(ρ Δx): the whole stress of the layer, none of it taken by the floor or
 // the air (the edges on the sand's boundary carry no traction).
 BOOST_AUTO_TEST_CASE(frictional_stress_has_no_traction_on_the_sand_boundary) {
   const MacGrid<2> grid(Vec<2>::Zero(), Vec<2>(0.16, 0.1), 0.01);
-  const CellState<2> cells = box_cells<2>(grid, {4, 0}, {12, 4}, Cell::Sand, 2000.0);
-  SandCells<2> sand;
-  sand.yielding.assign(grid.cell_count(), 0);
-  sand.rigid.assign(grid.cell_count(), 0);
-  sand.stress.assign(grid.cell_count(), Mat<2>::Zero());
   const double s = 300.0, dt = 1e-3, kick = dt * s / (2000.0 * grid.dx);
-  for (std::size_t k = 0; k < grid.cell_count(); ++k)
-    if (is_fluid(cells.label[k])) {
-      sand.yielding[k] = 1;
-      sand.stress[k] << 0.0, s, s, 0.0;
-    }
-  FaceField<2> u = grid.zero_faces();
-  apply_frictional_stress<2>(grid, cells, sand, dt, u);
+  const FaceField<2> u = layer_pushed_by_shear(grid, [&](int) { return s; }, dt);
   for (int row = 0; row < 4; ++row) {
     const double expected = row == 0 ? kick : (row == 3 ? -kick : 0.0);
     for (int col = 5; col < 12; ++col)  // x-faces inside the layer
       BOOST_TEST(u[0][grid.face(0, {col, row})] == expected, boost::test_tools::tolerance(1e-12));
   }
+}
+
+// [Zhu-Bridson 2005: frictional stress]: the same layer with a shear stress growing by s per row,
+// τ_xy = s (r + 1). Inside, ∂τ_xy/∂y is taken between the edge values above and below a face, each
+// the mean of the four cells around the edge, (τ_r + τ_r±1)/2: the rows 1 and 2 get Δt s/(ρ Δx),
+// the bottom row (no traction at the floor's edge) 1.5 times that, the top row (none at the air's)
+// −3.5 times that, and the layer's momentum is unchanged. Fails when an edge takes only the face's
+// own two cells (no shear force inside at all) or the edges' mean is weighted otherwise.
+BOOST_AUTO_TEST_CASE(frictional_stress_of_a_varying_shear_pushes_each_row_by_its_gradient) {
+  const MacGrid<2> grid(Vec<2>::Zero(), Vec<2>(0.16, 0.1), 0.01);
+  const double s = 300.0, dt = 1e-3, kick = dt * s / (2000.0 * grid.dx);
+  const FaceField<2> u = layer_pushed_by_shear(grid, [&](int row) { return s * (row + 1); }, dt);
+  const std::array<double, 4> expected{1.5 * kick, kick, kick, -3.5 * kick};
+  double momentum = 0.0;
+  for (int row = 0; row < 4; ++row)
+    for (int col = 5; col < 12; ++col) {  // x-faces inside the layer
+      BOOST_TEST(u[0][grid.face(0, {col, row})] == expected[row], boost::test_tools::tolerance(1e-12));
+      momentum += u[0][grid.face(0, {col, row})];
+    }
+  BOOST_TEST(std::abs(momentum) < 1e-12 * kick);
 }
 
 // [Zhu-Bridson 2005: Frictional Boundary Conditions]: the floor's normal stress on a resting sand
