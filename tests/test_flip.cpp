@@ -157,6 +157,15 @@ double slab_on_incline(double theta_deg, double t_end, bool rough_floor = true) 
   return momentum<2>(solver.particles())[0] / total_mass<2>(solver.particles());
 }
 
+/// The face velocities of the affine field u(x) = A x + b: each face's component at its centre.
+FaceField<2> affine_faces(const MacGrid<2>& grid, const Mat<2>& A, const Vec<2>& b) {
+  FaceField<2> u = grid.zero_faces();
+  for (int a = 0; a < 2; ++a)
+    for (std::size_t k = 0; k < u[a].size(); ++k)
+      u[a][k] = (A * grid.face_centre(a, MacGrid<2>::unflat(k, grid.face_dims(a))) + b)[a];
+  return u;
+}
+
 /// A cohesionless sand layer (rest density 1600, φ = 30°) one cell deep (Δx = 0.02 m) and 0.4 m
 /// long on the floor of a long 2-D tank, launched along the floor at u0 [m/s] over a floor of wall
 /// friction μ_w (SandParams::wall_friction: < 0 for the default); its momentum per unit mass after
@@ -277,10 +286,7 @@ BOOST_AUTO_TEST_CASE(midpoint_advection_is_second_order_in_a_linear_field) {
   Mat<2> A;
   A << 0.4, -2.0, 1.5, -0.3;
   const Vec<2> b(0.2, -0.1);
-  FaceField<2> u = grid.zero_faces();
-  for (int a = 0; a < 2; ++a)
-    for (std::size_t k = 0; k < u[a].size(); ++k)
-      u[a][k] = (A * grid.face_centre(a, MacGrid<2>::unflat(k, grid.face_dims(a))) + b)[a];
+  const FaceField<2> u = affine_faces(grid, A, b);
   const Vec<2> x(0.52, 0.43);
   const Vec<2> ux = A * x + b;
   const double dt = 0.05;
@@ -498,13 +504,11 @@ BOOST_AUTO_TEST_CASE(cell_strain_rate_of_a_simple_shear_and_of_a_rigid_turn) {
   const MacGrid<2> grid(Vec<2>::Zero(), Vec<2>(0.08, 0.08), 0.01);
   const CellState<2> cells = box_cells<2>(grid, {2, 2}, {6, 6}, Cell::Sand, 2000.0);
   const double gamma = 3.0, omega = 2.0;
-  FaceField<2> shear = grid.zero_faces(), turn = grid.zero_faces();
-  for (int a = 0; a < 2; ++a)
-    for (std::size_t k = 0; k < shear[a].size(); ++k) {
-      const Vec<2> x = grid.face_centre(a, MacGrid<2>::unflat(k, grid.face_dims(a)));
-      shear[a][k] = a == 0 ? gamma * x[1] : 0.0;
-      turn[a][k] = a == 0 ? -omega * x[1] : omega * x[0];
-    }
+  Mat<2> simple_shear, rigid_turn;
+  simple_shear << 0.0, gamma, 0.0, 0.0;
+  rigid_turn << 0.0, -omega, omega, 0.0;
+  const FaceField<2> shear = affine_faces(grid, simple_shear, Vec<2>::Zero());
+  const FaceField<2> turn = affine_faces(grid, rigid_turn, Vec<2>::Zero());
   for (int i = 2; i < 6; ++i)
     for (int j = 2; j < 6; ++j) {
       BOOST_TEST_CONTEXT("cell " << i << ", " << j) {
