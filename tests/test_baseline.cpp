@@ -12,6 +12,7 @@
 #include "compare.hpp"
 #include "case/case_file.hpp"
 #include "run_record.hpp"
+#include "support/process.hpp"
 
 using namespace sc;
 namespace fs = std::filesystem;
@@ -46,8 +47,7 @@ void write_case(const fs::path& cases_dir, const json& c) {
 
 /// A fresh temporary folder for one test.
 fs::path temp_folder(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("sandcastle_" + name);
-  fs::remove_all(dir);
+  const fs::path dir = test::fresh_path(name);
   fs::create_directories(dir);
   return dir;
 }

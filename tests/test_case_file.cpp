@@ -29,7 +29,7 @@ json valid_case() {
 }
 
 std::string write_temp(const json& j) {
-  static const std::string path = test::fresh_path("case_test") + ".json";  // one per process
+  static const std::string path = test::fresh_path("case_test", ".json");  // one per process
   std::ofstream(path) << j.dump();
   return path;
 }
@@ -87,7 +87,7 @@ BOOST_AUTO_TEST_CASE(each_fault_names_its_json_path) {
 
 BOOST_AUTO_TEST_CASE(missing_file_and_bad_json) {
   BOOST_CHECK_THROW(load_case("/nonexistent/case.json"), InputError);
-  const std::string path = test::fresh_path("bad") + ".json";
+  const std::string path = test::fresh_path("bad", ".json");
   std::ofstream(path) << "{ \"name\": ";
   BOOST_CHECK_THROW(load_case(path), InputError);
 }

@@ -6,6 +6,7 @@
 
 #include "core/errors.hpp"
 #include "geometry/winding_number.hpp"
+#include "support/process.hpp"
 
 using namespace sc;
 namespace fs = std::filesystem;
@@ -48,9 +49,9 @@ TriangleMesh sphere(double r, int levels) {
 }
 
 std::string write_obj(const std::string& name, const std::string& text) {
-  const fs::path path = fs::temp_directory_path() / ("sandcastle_test_" + name + ".obj");
+  const std::string path = test::fresh_path("mesh_" + name, ".obj");
   std::ofstream(path) << text;
-  return path.string();
+  return path;
 }
 
 std::string obj_text(const TriangleMesh& m) {

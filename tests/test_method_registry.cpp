@@ -36,7 +36,7 @@ std::string view_checksum(const ParticleView<2>& view) {
 
 /// Writes `doc` to a fresh temporary case file and returns its path.
 std::string write_case(const json& doc) {
-  const std::string path = test::fresh_path("method_case") + ".json";
+  const std::string path = test::fresh_path("method_case", ".json");
   std::ofstream(path) << doc.dump();
   return path;
 }
@@ -155,7 +155,7 @@ BOOST_AUTO_TEST_CASE(a_run_resumed_through_the_registry_continues_bitwise) {
   BOOST_TEST(straight->writes_checkpoints());
   BOOST_TEST(method_writes_checkpoints("sph"));
   for (int k = 0; k < 20; ++k) straight->step();  // past a neighbour sort (every 16 steps)
-  const std::string ckpt = test::fresh_path("method_ckpt") + ".ckpt";
+  const std::string ckpt = test::fresh_path("method_ckpt", ".ckpt");
   straight->write_checkpoint(ckpt, json{{"marker", 7}});
   json run_log;
   const std::unique_ptr<Method<2>> resumed = resume_method<2>(spec, kSpacing, ckpt, run_log);

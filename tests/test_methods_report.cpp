@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "io/json_reader.hpp"
 #include "runner.hpp"
+#include "support/process.hpp"
 
 using namespace sc;
 namespace fs = std::filesystem;
@@ -38,8 +39,7 @@ json tiny_tank() {
 
 struct Folder {
   fs::path root;
-  explicit Folder(const std::string& name) : root(fs::temp_directory_path() / ("sandcastle_" + name)) {
-    fs::remove_all(root);
+  explicit Folder(const std::string& name) : root(test::fresh_path(name)) {
     fs::create_directories(root / "cases" / "tank");
     std::ofstream(root / "cases" / "tank" / "case.json") << tiny_tank().dump(1);
   }

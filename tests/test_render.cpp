@@ -81,7 +81,7 @@ json sphere_case() {
 }
 
 std::string write_case(const json& doc) {
-  const std::string path = test::fresh_path("render_case") + ".json";
+  const std::string path = test::fresh_path("render_case", ".json");
   write_file_atomic(path, doc.dump(1));
   return path;
 }

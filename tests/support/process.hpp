@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -25,12 +26,38 @@ struct ProcessResult {
   std::string out, err;
 };
 
-/// A fresh, unused path under the temporary folder (nothing is created).
-inline std::string fresh_path(const std::string& stem) {
+/// The paths fresh_path gave out, removed with everything in them when the test process ends, so
+/// that a run of the tests leaves nothing behind in the temporary folder. With
+/// SANDCASTLE_KEEP_TEST_FILES set (to anything) they stay, to look at a failing test's output.
+class ScratchPaths {
+ public:
+  ScratchPaths() = default;
+  ScratchPaths(const ScratchPaths&) = delete;
+  ScratchPaths& operator=(const ScratchPaths&) = delete;
+  ~ScratchPaths() {
+    if (std::getenv("SANDCASTLE_KEEP_TEST_FILES")) return;
+    std::error_code ignored;  // a path never created, or already removed by its test
+    for (const auto& p : paths_) std::filesystem::remove_all(p, ignored);
+  }
+  void add(const std::filesystem::path& p) { paths_.push_back(p); }
+
+ private:
+  std::vector<std::filesystem::path> paths_;
+};
+
+inline ScratchPaths& scratch_paths() {
+  static ScratchPaths paths;  // one per process, whichever test file asks first
+  return paths;
+}
+
+/// A fresh, unused path under the temporary folder, ending in `suffix` (e.g. ".json"); nothing is
+/// created, and whatever a test puts there is removed when the process ends (ScratchPaths).
+inline std::string fresh_path(const std::string& stem, const std::string& suffix = "") {
   static int counter = 0;
   const auto p = std::filesystem::temp_directory_path() /
-                 ("sandcastle_" + stem + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+                 ("sandcastle_" + stem + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + suffix);
   std::filesystem::remove_all(p);
+  scratch_paths().add(p);
   return p.string();
 }
 
