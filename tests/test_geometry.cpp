@@ -1,5 +1,7 @@
 // Meshes: OBJ loading and its errors, the winding-number inside test, sampling, placement.
 #include <boost/test/unit_test.hpp>
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -143,6 +145,43 @@ BOOST_AUTO_TEST_CASE(placement_rotates_y_up_scales_to_size_and_moves_min_corner)
   BOOST_TEST((placed.bbox_min() - Vec<3>(1.0, 2.0, 3.0)).norm() < 1e-12);
   BOOST_TEST((placed.bbox_max() - Vec<3>(3.0, 4.0, 4.0)).norm() < 1e-12);  // the file's y is now z
   BOOST_TEST(placed.signed_volume() == 4.0, boost::test_tools::tolerance(1e-12));  // orientation kept
+}
+
+BOOST_AUTO_TEST_CASE(placement_scales_then_translates_by_the_given_vector) {
+  // Without min_corner, `translation` moves the scaled mesh by its three components, each along its
+  // own axis: the unit cube at scale 2 moved by (1, 2, 3) spans (1, 2, 3) to (3, 4, 5).
+  MeshPlacement p;
+  p.scale = 2.0;
+  p.translation = {1.0, 2.0, 3.0};
+  const TriangleMesh placed = place_mesh(unit_cube(), p);
+  BOOST_TEST((placed.bbox_min() - Vec<3>(1.0, 2.0, 3.0)).norm() < 1e-12);
+  BOOST_TEST((placed.bbox_max() - Vec<3>(3.0, 4.0, 5.0)).norm() < 1e-12);
+  BOOST_TEST(placed.signed_volume() == 8.0, boost::test_tools::tolerance(1e-12));
+}
+
+BOOST_AUTO_TEST_CASE(sampling_fills_a_box_of_three_different_sides_once_per_lattice_cell) {
+  // A 0.2 x 0.3 x 0.5 m box at dx = 0.05 m holds 4 x 6 x 10 lattice cells; sample_inside gives one
+  // point at the centre of each, every point once, so the points fill the box to half a spacing of
+  // each face. Unequal sides tell every axis's cell count from the others'.
+  TriangleMesh box = unit_cube();
+  for (Vec<3>& v : box.vertices) v = v.cwiseProduct(Vec<3>(0.2, 0.3, 0.5));
+  const double dx = 0.05;
+  const auto points = sample_inside(box, dx);
+  BOOST_TEST(points.size() == 4u * 6u * 10u);
+  std::map<std::array<long, 3>, int> seen;
+  for (const Vec<3>& p : points) {
+    std::array<long, 3> cell{};
+    for (int d = 0; d < 3; ++d) {
+      const double k = p[d] / dx - 0.5;  // the cell's index: a whole number for a cell centre
+      BOOST_TEST_REQUIRE(std::abs(k - std::round(k)) < 1e-9);
+      cell[d] = std::lround(k);
+    }
+    ++seen[cell];
+  }
+  BOOST_TEST(seen.size() == points.size());  // no point twice
+  const std::array<long, 3> cells{4, 6, 10};
+  for (const auto& [cell, n] : seen)
+    for (int d = 0; d < 3; ++d) BOOST_TEST_REQUIRE((cell[d] >= 0 && cell[d] < cells[d]));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -71,6 +71,28 @@ BOOST_AUTO_TEST_CASE(mesh_fills_its_placed_box) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(a_sand_mesh_fills_with_the_sands_mass_and_rest_density) {
+  // Sand from a mesh is sand as from a block: the sand's lattice mass and its rest density, so each
+  // particle's rest volume m/ρ0 is the water's (one lattice), and the summed mass is ρ_sand times the
+  // sampled volume.
+  json j = box_case();
+  j["sand"] = {{"rest_density", 2000.0}, {"friction_angle", 35.0}};
+  j["meshes"][0]["phase"] = "sand";
+  j["blocks"] = json::array({{{"phase", "water"}, {"min", {1.0, 1.0, 1.0}}, {"max", {1.2, 1.2, 1.2}}}});
+  const ParticleSet<3> ps = build_scene<3>(load_case(write_case(j)), 0.05);
+  std::size_t sand = 0, water = 0;
+  double sand_volume = 0.0, water_volume = 0.0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const bool is_sand = ps.phase_of(i) == Phase::Sand;
+    BOOST_TEST_REQUIRE(ps.rho0[i] == (is_sand ? 2000.0 : 1000.0));
+    (is_sand ? sand_volume : water_volume) = ps.m[i] / ps.rho0[i];
+    ++(is_sand ? sand : water);
+  }
+  BOOST_TEST(sand == 4u * 4u * 8u);
+  BOOST_TEST(water > 0u);
+  BOOST_TEST(sand_volume == water_volume, boost::test_tools::tolerance(1e-12));
+}
+
 BOOST_AUTO_TEST_CASE(each_mesh_fault_names_its_json_path) {
   json missing = box_case(), both = box_case(), outside = box_case(), sand = box_case(), flat = box_case();
   missing["meshes"][0]["file"] = "no_such.obj";

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include "surface/implicit_surface.hpp"
 #include "surface/surface_mesh.hpp"
@@ -137,6 +138,24 @@ BOOST_AUTO_TEST_CASE(mesh_is_closed_and_thread_independent) {
     BOOST_TEST(mesh[run].points == mesh[0].points);
     BOOST_TEST(mesh[run].triangles == mesh[0].triangles);
   }
+}
+
+// The check the tests above lean on can fail: a tetrahedron with outward normals is closed and
+// oriented (volume 1/6); without one face, three edges have one triangle each; with one face turned,
+// its edges run the same way as its neighbours'; no triangles is no surface.
+BOOST_AUTO_TEST_CASE(closedness_check_refuses_a_hole_and_a_turned_face) {
+  SurfaceMesh tet;
+  tet.points = {Vec<3>(0.0, 0.0, 0.0), Vec<3>(1.0, 0.0, 0.0), Vec<3>(0.0, 1.0, 0.0), Vec<3>(0.0, 0.0, 1.0)};
+  tet.triangles = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  BOOST_TEST(is_closed_and_oriented(tet));
+  BOOST_TEST(enclosed_volume(tet) == 1.0 / 6.0, boost::test_tools::tolerance(1e-15));
+  SurfaceMesh holed = tet;
+  holed.triangles.pop_back();
+  BOOST_TEST(!is_closed_and_oriented(holed));
+  SurfaceMesh turned = tet;
+  std::swap(turned.triangles[3][1], turned.triangles[3][2]);
+  BOOST_TEST(!is_closed_and_oriented(turned));
+  BOOST_TEST(!is_closed_and_oriented(SurfaceMesh{}));
 }
 
 // Wet sand shown darker: a block of uniform saturation 0.3 gives 0.3 at every vertex (to round-off);
