@@ -808,6 +808,40 @@ struct CaseByDem {
   const DemMethod<2>& dem() const { return dynamic_cast<const DemMethod<2>&>(*run); }
 };
 
+/// One CaseByDem for every test that reads it: building the case packs its grains, which takes
+/// seconds, and no test changes it.
+const CaseByDem& case_by_dem() {
+  static const CaseByDem c;
+  return c;
+}
+
+/// The parameters of the water-grain force tests: coupling support 3 mm, viscosity 0.05, grain
+/// pressure 20 Pa.
+Params coupling_params() {
+  Params p;
+  p.coupling_support = 3e-3;
+  p.coupling_viscosity = 0.05;
+  p.grain_pressure = 20.0;
+  return p;
+}
+
+/// The wetness parameters of the propagation tests: w_f = 0.5, k_p = 100 /s.
+Params propagation_params() {
+  Params p;
+  p.stiffness = 1e3;
+  p.wet_threshold = 0.5;
+  p.propagation_rate = 100.0;
+  return p;
+}
+
+/// Three dry grains of radius 1 mm in a row along x, each touching the next (centres 1.99 R apart).
+Grains<2> touching_row() {
+  const double R = 1e-3;
+  Grains<2> g;
+  for (int i = 0; i < 3; ++i) g.add(Vec<2>(i * 1.99 * R, 0.0), R, 2650.0);
+  return g;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(dem)
@@ -823,7 +857,7 @@ BOOST_AUTO_TEST_SUITE(dem)
 // bulk cohesion, F0 = c ε d / ((1 − ε) tan φ) per metre in 2-D (Rumpf's tensile strength with
 // c = σ_t tan φ, docs/equations.md §7.8), to round-off.
 BOOST_AUTO_TEST_CASE(a_cases_cohesion_is_the_pull_off_of_its_grains_bridges) {
-  const CaseByDem c;
+  const CaseByDem& c = case_by_dem();
   const double d = CaseByDem::dx;
   const double F0 = 3000.0 * 0.4 * d / (0.6 * std::tan(pi / 6.0));
   BOOST_TEST((c.dem().params().bridge == BridgeLaw::Willett));
@@ -835,7 +869,7 @@ BOOST_AUTO_TEST_CASE(a_cases_cohesion_is_the_pull_off_of_its_grains_bridges) {
 // ("restitution", default 0.3), within 0.1 % (the step resolves the contact in 2000 parts). The
 // dashpot is set for the pair's effective mass m/2; set for m, it would give e = 0.16.
 BOOST_AUTO_TEST_CASE(two_equal_grains_of_a_case_part_with_its_restitution) {
-  const CaseByDem c;
+  const CaseByDem& c = case_by_dem();
   const ParticleView<2> grains = c.run->particles();
   const double m = grains.m[0] - grains.held_water[0], R = 0.5 * CaseByDem::dx;  // dry
   Grains<2> g;
@@ -853,6 +887,21 @@ BOOST_AUTO_TEST_CASE(two_equal_grains_of_a_case_part_with_its_restitution) {
   BOOST_TEST(e == read_dem_params(c.spec).restitution, boost::test_tools::tolerance(1e-3));
 }
 
+// The contact spring DEM gives a case (contact_params) holds the weight of the material's full
+// height at the asked overlap: k δ R = (H/d) m g, a column of H/d grains of mass m pressing on the
+// bottom spring, H the height of the sand along gravity. wet_sand_collapse at d = 0.01 m: a column
+// 0.1 m wide and 0.2 m high (20 layers), the default overlap δ = 0.01 of R = d/2, to 1e-12. Measured
+// across the column (0.1 m) the spring would be half as stiff and the column would sink twice the
+// asked overlap.
+BOOST_AUTO_TEST_CASE(a_cases_spring_holds_the_weight_of_its_full_height_at_the_asked_overlap) {
+  const CaseByDem& c = case_by_dem();
+  const ParticleView<2> grains = c.run->particles();
+  const double m = grains.m[0] - grains.held_water[0];  // dry, as when the stiffness was set
+  const double d = CaseByDem::dx, R = 0.5 * d, overlap = read_dem_params(c.spec).overlap;
+  const double layers = 0.2 / d;  // the sand block spans y in [0, 0.2]
+  BOOST_TEST(c.dem().params().stiffness * overlap * R == layers * m * 9.81, boost::test_tools::tolerance(1e-12));
+}
+
 // [Rungjiratananon 2008: water-grain viscosity, fixed] with a case's μ: a grain resting at a site
 // of a lattice block of the case's water (masses of its lattice, at rest density) in the shear flow
 // v = (a y², 0), y measured from the grain, feels half the force μ V_g ∇²v = 2aμ V_g that eq 5
@@ -860,7 +909,7 @@ BOOST_AUTO_TEST_CASE(two_equal_grains_of_a_case_part_with_its_restitution) {
 // moment, as eq 5's pairs do (docs/equations.md eq 5). wet_sand_collapse at 0.01 m, within 1e-9;
 // with μ as printed the drag would be a third too large.
 BOOST_AUTO_TEST_CASE(a_grain_in_a_cases_shear_flow_feels_half_the_viscous_force_of_its_water) {
-  const CaseByDem c;
+  const CaseByDem& c = case_by_dem();
   const CaseSpec& spec = c.spec;
   const double dx = CaseByDem::dx, a = 3.0;
   Params p = c.dem().params();
@@ -889,6 +938,39 @@ BOOST_AUTO_TEST_CASE(a_grain_in_a_cases_shear_flow_feels_half_the_viscous_force_
   BOOST_TEST_MESSAGE("drag " << on_grain.transpose() << ", expected " << expected);
   BOOST_TEST(on_grain[0] == expected, boost::test_tools::tolerance(1e-9));
   BOOST_TEST(std::abs(on_grain[1]) <= 1e-12 * expected);
+}
+
+// [Rungjiratananon 2008: absorption] with a case's reach (wet_params): a grain absorbs a water
+// particle whose lattice site touches it, i.e. whose centre lies within half a spacing of the
+// grain's surface, and not one whose site is clear of it. wet_sand_collapse at d = 0.01 m: two
+// moist grains (saturation 0.1, below w_f) of radius d/2 far apart, a small water particle
+// 0.45 d from the surface of the first and 0.55 d from the second's: only the first is taken.
+BOOST_AUTO_TEST_CASE(a_cases_grain_absorbs_the_water_whose_site_touches_it) {
+  const CaseByDem& c = case_by_dem();
+  const double d = CaseByDem::dx, R = 0.5 * d;
+  const Params& p = c.dem().params();
+  Grains<2> g;
+  g.add(Vec<2>(0.1, 0.1), R, 2650.0);
+  g.add(Vec<2>(0.2, 0.1), R, 2650.0);
+  const double C = g.capacity(0, p);
+  for (std::size_t k = 0; k < 2; ++k) g.water[k] = 0.1 * C;
+  ParticleSet<2> water;
+  const double gap[2] = {0.45 * d, 0.55 * d};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::size_t i = water.append();
+    water.x[i] = g.x[k] + Vec<2>(R + gap[k], 0.0);
+    water.m[i] = 0.01 * C;
+    water.h[i] = p.coupling_support;
+    water.rho0[i] = water.rho[i] = p.water_density;
+    water.phase[i] = static_cast<std::uint8_t>(Phase::Water);
+  }
+  CouplingGrids<2> grids;
+  bin_coupling(g, water, p, grids);
+  BOOST_TEST(absorb_water(g, water, grids, p) == 1u);
+  BOOST_TEST(g.water[0] == 0.11 * C, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(g.water[1] == 0.1 * C);  // out of reach: nothing taken
+  BOOST_REQUIRE(water.size() == 1u);
+  BOOST_TEST(water.m[0] == 0.01 * C);
 }
 
 BOOST_AUTO_TEST_CASE(wet_adapter_conserves_water_and_momentum) {
@@ -982,16 +1064,47 @@ BOOST_AUTO_TEST_CASE(water_grain_coupling_conserves_momentum_and_water) {
   BOOST_TEST(water_drift < 1e-12);
 }
 
+// [Rungjiratananon 2008: absorption, bounded]: only a grain that is not over-wet (saturation at most
+// w_f) takes up the water touching it; an over-wet grain passes its water on by propagation
+// instead and absorbs nothing. Two grains far apart, at saturations 0.45 and 0.55 (w_f = 0.5),
+// each with a small water particle 0.1 mm from its surface: the first takes its particle whole,
+// the second leaves its particle where it is.
+BOOST_AUTO_TEST_CASE(an_over_wet_grain_absorbs_no_water) {
+  Params p;  // w_f = 0.5, capacity fraction 0.4, water 1000 kg/m^3
+  p.coupling_support = 3e-3;
+  p.absorb_distance = 0.2e-3;
+  const double R = 1e-3;
+  Grains<3> g;
+  g.add(Vec<3>(0.0, 0.0, 0.0), R, 2650.0);
+  g.add(Vec<3>(0.01, 0.0, 0.0), R, 2650.0);
+  const double C = g.capacity(0, p);
+  g.water[0] = 0.45 * C;
+  g.water[1] = 0.55 * C;
+  ParticleSet<3> water;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::size_t i = water.append();
+    water.x[i] = g.x[k] + Vec<3>(R + 0.1e-3, 0.0, 0.0);
+    water.m[i] = 0.01 * C;
+    water.h[i] = 3e-3;
+    water.rho0[i] = water.rho[i] = 1000.0;
+    water.phase[i] = static_cast<std::uint8_t>(Phase::Water);
+  }
+  CouplingGrids<3> grids;
+  bin_coupling(g, water, p, grids);
+  BOOST_TEST(absorb_water(g, water, grids, p) == 1u);
+  BOOST_TEST(g.water[0] == 0.46 * C, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(g.water[1] == 0.55 * C);  // over-wet: unchanged
+  BOOST_REQUIRE(water.size() == 1u);
+  BOOST_TEST((water.x[0] - g.x[1]).norm() == R + 0.1e-3, boost::test_tools::tolerance(1e-12));
+}
+
 // [Rungjiratananon 2008: water-grain pressure and viscosity, fixed], against the kernels written out
 // here: a water particle at distance r < h from a grain is pushed along x_i − x_g by
 // (V_i V_g/4)(p_i + p_g) 45 (h − r)²/(π h⁶) (the spiky gradient) and dragged towards the grain's
 // velocity by μ (V_i V_g/2) 45 (h − r)/(π h⁶) (v_g − v_i) (the viscosity Laplacian); the grain takes
 // the negative, and beyond h neither acts.
 BOOST_AUTO_TEST_CASE(water_grain_force_is_the_spiky_pressure_and_the_laplacian_viscosity) {
-  Params p;
-  p.coupling_support = 3e-3;
-  p.coupling_viscosity = 0.05;
-  p.grain_pressure = 20.0;
+  const Params p = coupling_params();
   Grains<3> g;
   g.add(Vec<3>(0.01, 0.01, 0.01), 1e-3, 2650.0);
   g.v[0] = Vec<3>(0.02, -0.01, 0.03);
@@ -1024,17 +1137,44 @@ BOOST_AUTO_TEST_CASE(water_grain_force_is_the_spiky_pressure_and_the_laplacian_v
   BOOST_TEST(water_grain_force(water, 0, g, 0, p).norm() == 0.0);
 }
 
+// [Rungjiratananon 2008: water-grain pressure and viscosity, fixed]: the coupling acts between grains
+// and water only. The SPH tank's wall particles meet the grains through the tank's contact planes,
+// not through the coupling, so a wall particle within the coupling support of a grain neither
+// pushes it nor is pushed: the grain feels exactly minus what its water particle feels, and the
+// coupling forces on grains, water and walls sum to zero.
+BOOST_AUTO_TEST_CASE(a_wall_particle_in_reach_does_not_push_a_grain) {
+  const Params p = coupling_params();
+  Grains<3> g;
+  g.add(Vec<3>(0.01, 0.01, 0.01), 1e-3, 2650.0);
+  ParticleSet<3> sph;
+  for (const Phase phase : {Phase::Water, Phase::Boundary}) {
+    const std::size_t i = sph.append();
+    sph.x[i] = g.x[0] + (phase == Phase::Water ? Vec<3>(1.1e-3, -0.7e-3, 0.4e-3) : Vec<3>(-0.6e-3, 0.9e-3, -1.2e-3));
+    sph.v[i] = Vec<3>(-0.01, 0.02, 0.0);
+    sph.m[i] = 1e-6;
+    sph.h[i] = 3e-3;
+    sph.rho0[i] = 1000.0;
+    sph.rho[i] = 1010.0;
+    sph.p[i] = 150.0;
+    sph.phase[i] = static_cast<std::uint8_t>(phase);
+  }
+  const Vec<3> from_water = water_grain_force(sph, 0, g, 0, p);
+  BOOST_REQUIRE(water_grain_force(sph, 1, g, 0, p).norm() > 0.1 * from_water.norm());  // the wall particle is in reach
+  CouplingGrids<3> grids;
+  bin_coupling(g, sph, p, grids);
+  coupling_forces(g, sph, grids, p);
+  BOOST_TEST(sph.force[1].norm() == 0.0);
+  BOOST_TEST((g.force[0] + from_water).norm() <= 1e-15 * from_water.norm());
+  BOOST_TEST((g.force[0] + sph.force[0] + sph.force[1]).norm() <= 1e-15 * from_water.norm());
+}
+
 // [Rungjiratananon 2008: wetness propagation, fixed], one step: an over-wet grain gives each of its
 // drier touching neighbours k_p Δt (w − w_f C)/n, n the number of them, and loses the sum; the water
 // moved carries the giver's velocity. A row of three grains, the middle one saturated and moving.
 BOOST_AUTO_TEST_CASE(wetness_propagation_shares_the_excess_among_the_drier_neighbours) {
-  Params p;
-  p.stiffness = 1e3;
-  p.wet_threshold = 0.5;
-  p.propagation_rate = 100.0;
-  const double R = 1e-3, dt = 1e-4;
-  Grains<2> g;
-  for (int i = 0; i < 3; ++i) g.add(Vec<2>(i * 1.99 * R, 0.0), R, 2650.0);
+  const Params p = propagation_params();
+  const double dt = 1e-4;
+  Grains<2> g = touching_row();
   const double C = g.capacity(1, p);
   g.water[1] = C;
   g.v[1] = Vec<2>(0.1, -0.2);
@@ -1050,6 +1190,27 @@ BOOST_AUTO_TEST_CASE(wetness_propagation_shares_the_excess_among_the_drier_neigh
   }
   BOOST_TEST((g.v[1] - Vec<2>(0.1, -0.2)).norm() <= 1e-15);  // what it gives has its own velocity
   BOOST_TEST(m_mid - g.mass(1) == given, boost::test_tools::tolerance(1e-9));
+}
+
+// [Rungjiratananon 2008: wetness propagation, fixed]: an over-wet grain shares its excess among its
+// N_i touching neighbours that are not over-wet; an over-wet neighbour takes no share and does not
+// count in N_i. A row of three touching grains: saturated, over-wet at 0.8 (w_f = 0.5), dry. The
+// middle one gives its whole k_p Δt (w − w_f C) to the dry one (N = 1); the saturated end, whose
+// only neighbour is over-wet, gives nothing and keeps its water bitwise.
+BOOST_AUTO_TEST_CASE(an_over_wet_neighbour_takes_no_share_and_does_not_thin_the_others) {
+  const Params p = propagation_params();
+  const double dt = 1e-4;
+  Grains<2> g = touching_row();
+  const double C = g.capacity(0, p);
+  g.water[0] = C;
+  g.water[1] = 0.8 * C;
+  CellGrid<2> grid;
+  bin_grains(g, p, grid);
+  propagate_wetness(g, grid, p, dt);
+  const double given = p.propagation_rate * dt * (0.8 * C - p.wet_threshold * C);
+  BOOST_TEST(g.water[0] == C);  // touches only an over-wet grain
+  BOOST_TEST(g.water[2] == given, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(g.water[1] == 0.8 * C - given, boost::test_tools::tolerance(1e-12));
 }
 
 // [Rungjiratananon 2008: wetness propagation, fixed]: over-wet grains pass water to drier touching

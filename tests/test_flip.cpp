@@ -278,6 +278,43 @@ BOOST_AUTO_TEST_CASE(transfers_reproduce_uniform_and_linear_fields) {
   }
 }
 
+// [Zhu-Bridson 2005: Transferring to the Grid]: a face takes the mass-weighted mean of the particle
+// velocities, u_f = Σ w m v / Σ w m, and `weight` receives Σ w m. For particles more than a cell from
+// the walls each particle's weights add up to 1, so the grid holds the particles' mass and momentum
+// exactly: per component Σ_f (Σ w m)_f = Σ_p m_p and Σ_f (Σ w m)_f u_f = Σ_p m_p v_p,a (1e-12), here
+// with sand (2650) and water (1000) particles of unequal masses sharing the faces where they meet.
+BOOST_AUTO_TEST_CASE(particle_to_grid_keeps_the_mass_and_momentum_of_unequal_masses) {
+  const MacGrid<2> grid(Vec<2>::Zero(), Vec<2>(1.0, 1.0), 0.1);
+  FlipParticles<2> ps;
+  seed_box<2>(grid, Vec<2>(0.2, 0.2), Vec<2>(0.5, 0.8), Phase::Sand, 2650.0, 0.9, 3, ps);
+  seed_box<2>(grid, Vec<2>(0.5, 0.2), Vec<2>(0.8, 0.8), Phase::Water, 1000.0, 0.9, 4, ps);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const double vx = uni(rng), vy = uni(rng);
+    ps.v[i] = (ps.is_sand(i) ? Vec<2>(0.3, -0.2) : Vec<2>(-0.5, 0.4)) + Vec<2>(vx, vy);
+  }
+  ParticleBins<2> bins;
+  bins.build(grid, ps.x);
+  FaceField<2> u, w;
+  particles_to_grid<2>(grid, bins, ps.x, ps.v, ps.m, u, w);
+  const double M = total_mass<2>(ps);
+  const Vec<2> P = momentum<2>(ps);
+  BOOST_TEST(M == 657.0, boost::test_tools::tolerance(1e-12));  // 72 sand of 6.625 kg, 72 water of 2.5 kg
+  for (int a = 0; a < 2; ++a) {
+    double grid_mass = 0.0, grid_momentum = 0.0, scale = 0.0;
+    for (std::size_t k = 0; k < u[a].size(); ++k) {
+      grid_mass += w[a][k];
+      grid_momentum += w[a][k] * u[a][k];
+    }
+    for (std::size_t i = 0; i < ps.size(); ++i) scale += ps.m[i] * std::abs(ps.v[i][a]);
+    BOOST_TEST_CONTEXT("component " << a) {
+      BOOST_TEST(std::abs(grid_mass - M) <= 1e-12 * M);
+      BOOST_TEST(std::abs(grid_momentum - P[a]) <= 1e-12 * scale);
+    }
+  }
+}
+
 // [Zhu-Bridson 2005: Moving Particles]: in a linear grid field u(x) = A x + b, which the face
 // interpolation reproduces exactly, one midpoint step from x is x + Δt u(x + Δt/2 u(x)) =
 // x + Δt (A x + b) + Δt²/2 A (A x + b); a particle carried through a wall stops a tenth of Δx inside.
@@ -597,6 +634,68 @@ BOOST_AUTO_TEST_CASE(wall_normal_stress_is_the_weight_of_the_layer) {
     BOOST_TEST_MESSAGE(rows << " rows: floor stress " << stress << " Pa, weight " << rho * g * H);
     BOOST_TEST(stress == rho * g * H, boost::test_tools::tolerance(1e-9));
   }
+}
+
+// [Zhu-Bridson 2005: Solving on the Grid] with fluid cells of two densities: a tank 8 cells wide
+// holding 3 rows of sand (ρ_s = 2000) under 3 rows of water (ρ_w = 1000), the surface at the top of
+// the water (air distance Δx/2), every vertical face velocity −g Δt before the projection (gravity
+// on fluid at rest). The projection stops the fluid (|u| below 1e-8 g Δt) with the layered
+// hydrostatic pressure p = g ∫ ρ dz from the surface at every cell centre (1e-9): the face between a
+// water and a sand cell spans half a cell of each, ρ_f = (ρ_s + ρ_w)/2, so the top sand row is at
+// ρ_w g 0.03 + ρ_s g 0.005 = 392.4 Pa and the bottom row at ρ_w g 0.03 + ρ_s g 0.025 = 784.8 Pa.
+BOOST_AUTO_TEST_CASE(projection_gives_the_hydrostatic_pressure_of_water_over_sand) {
+  const MacGrid<2> grid(Vec<2>::Zero(), Vec<2>(0.08, 0.1), 0.01);
+  const double rho_s = 2000.0, rho_w = 1000.0, g = 9.81, dt = 1e-3, H = 0.06, interface = 0.03;
+  CellState<2> cells = box_cells<2>(grid, {0, 0}, {8, 6}, Cell::Water, rho_w);
+  for (std::size_t k = 0; k < grid.cell_count(); ++k)
+    if (is_fluid(cells.label[k]) && MacGrid<2>::unflat(k, grid.n)[1] < 3) {
+      cells.label[k] = Cell::Sand;
+      cells.density[k] = rho_s;
+    }
+  cells.air_distance.assign(grid.cell_count(), 0.5 * grid.dx);
+  FaceField<2> u = grid.zero_faces();
+  for (std::size_t k = 0; k < u[1].size(); ++k)
+    if (MacGrid<2>::unflat(k, grid.face_dims(1))[1] <= 6) u[1][k] = -g * dt;
+  std::vector<double> p;
+  project<2>(grid, cells, dt, 1e-14, 5000, u, p);
+  int wrong = 0;
+  for (std::size_t k = 0; k < grid.cell_count(); ++k) {
+    if (!is_fluid(cells.label[k])) continue;
+    const double y = grid.cell_centre(MacGrid<2>::unflat(k, grid.n))[1];
+    const double expected = rho_w * g * (H - std::max(y, interface)) + rho_s * g * std::max(0.0, interface - y);
+    if (std::abs(p[k] - expected) > 1e-9 * rho_s * g * H) ++wrong;
+  }
+  BOOST_TEST(wrong == 0);
+  BOOST_TEST(p[grid.cell({3, 2})] == 392.4, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(p[grid.cell({3, 0})] == 784.8, boost::test_tools::tolerance(1e-9));
+  double speed = 0.0;
+  for (int a = 0; a < 2; ++a)
+    for (const double v : u[a]) speed = std::max(speed, std::abs(v));
+  BOOST_TEST(speed <= 1e-8 * g * dt);
+}
+
+// [Zhu-Bridson 2005: free surface] ghost values: an air cell in a concave corner of the water (fluid
+// cells (0,0), (1,0), (0,1) of a 4 x 4 grid; the air cell (1,1) between two of them), every fluid
+// cell at p = 400 Pa, the surface θ = 1/4 of the way to each air cell centre (air distance 3Δx/4):
+// the ghost is p (1 − 1/θ) = −1200 Pa in the corner as next to one fluid cell, so interpolation from
+// either fluid neighbour towards the corner cell passes through p = 0 on the surface (1e-12 of p).
+BOOST_AUTO_TEST_CASE(ghost_pressure_puts_zero_on_the_surface_in_a_concave_corner) {
+  const MacGrid<2> grid(Vec<2>::Zero(), Vec<2>(0.4, 0.4), 0.1);
+  CellState<2> cells = box_cells<2>(grid, {0, 0}, {2, 2}, Cell::Water, 1000.0);
+  cells.label[grid.cell({1, 1})] = Cell::Air;
+  cells.density[grid.cell({1, 1})] = 0.0;
+  cells.air_distance.assign(grid.cell_count(), 0.75 * grid.dx);
+  const double p0 = 400.0, theta = 0.25;
+  std::vector<double> p(grid.cell_count(), 0.0);
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (is_fluid(cells.label[k])) p[k] = p0;
+  const std::vector<double> ghost = ghost_pressure<2>(grid, cells, p);
+  BOOST_TEST(ghost[grid.cell({1, 1})] == p0 * (1.0 - 1.0 / theta), boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(ghost[grid.cell({2, 0})] == p0 * (1.0 - 1.0 / theta), boost::test_tools::tolerance(1e-12));
+  const Vec<2> across = grid.cell_centre({0, 1}) + theta * grid.dx * Vec<2>::UnitX();
+  const Vec<2> above = grid.cell_centre({1, 0}) + theta * grid.dx * Vec<2>::UnitY();
+  BOOST_TEST(std::abs(grid.interpolate_cells(ghost, across)) <= 1e-12 * p0);
+  BOOST_TEST(std::abs(grid.interpolate_cells(ghost, above)) <= 1e-12 * p0);
 }
 
 // [Zhu-Bridson 2005: Frictional Boundary Conditions]: each wall stops the sand moving into it with

@@ -388,6 +388,40 @@ BOOST_AUTO_TEST_CASE(an_mpm_run_built_through_the_registry_steps) {
   BOOST_TEST(!fs::exists(out));
 }
 
+// MPM's seeding (make_mpm_method): each block is tiled by squares of side dx with one particle at
+// the centre of each, so the particles stand dx/2 inside every face of their block and their centre
+// of mass is the block's centre. The small MPM case at dx = 0.01 m: the water block [0, 0.1] x
+// [0, 0.2] holds 200 particles from (0.005, 0.005) to (0.095, 0.195), centred on (0.05, 0.1); the
+// sand block [0.2, 0.3] x [0, 0.1] holds 100 from (0.205, 0.005) to (0.295, 0.095), centred on
+// (0.25, 0.05) (1e-12 m).
+BOOST_AUTO_TEST_CASE(mpm_seeds_each_block_at_the_centres_of_its_lattice_squares) {
+  const CaseSpec spec = with_method(load_case(write_case(small_mpm_case_json())), "mpm");
+  const double dx = 0.01;
+  const std::unique_ptr<Method<2>> run = make_method<2>(spec, dx);
+  const ParticleView<2> view = run->particles();
+  const std::array<Phase, 2> phases{Phase::Water, Phase::Sand};
+  const std::array<std::array<double, 4>, 2> blocks{{{0.0, 0.0, 0.1, 0.2}, {0.2, 0.0, 0.3, 0.1}}};  // lo, hi
+  const std::array<std::size_t, 2> counts{200u, 100u};
+  for (int b = 0; b < 2; ++b) {
+    BOOST_TEST_CONTEXT("block " << b) {
+      const Vec<2> lo(blocks[b][0], blocks[b][1]), hi(blocks[b][2], blocks[b][3]);
+      std::size_t n = 0;
+      Vec<2> sum = Vec<2>::Zero(), first = Vec<2>::Constant(INFINITY), last = Vec<2>::Constant(-INFINITY);
+      for (std::size_t i = 0; i < view.size(); ++i) {
+        if (view.phase_of(i) != phases[b]) continue;
+        ++n;
+        sum += view.x[i];
+        first = first.cwiseMin(view.x[i]);
+        last = last.cwiseMax(view.x[i]);
+      }
+      BOOST_TEST(n == counts[b]);
+      BOOST_TEST((sum / static_cast<double>(n) - 0.5 * (lo + hi)).norm() <= 1e-12);
+      BOOST_TEST((first - (lo + Vec<2>::Constant(0.5 * dx))).norm() <= 1e-12);
+      BOOST_TEST((last - (hi - Vec<2>::Constant(0.5 * dx))).norm() <= 1e-12);
+    }
+  }
+}
+
 // A porous bed under MPM takes the case's "porous" section as Tampubolon et al. 2017 use it
 // (darcy_column, its bed filled to half saturation, 0.01 m):
 // - its pores hold ρ_w n S of the bed's volume as water particles on the bed's sites, to round-off;

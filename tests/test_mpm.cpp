@@ -371,6 +371,42 @@ BOOST_AUTO_TEST_CASE(a_block_leaving_the_floor_keeps_its_momentum) {
   }
 }
 
+// [Stomakhin 2013: Coulomb friction at colliding grid nodes] Each side has its own rule
+// (Params::rough[2d + side]). A block of sand (F^E = 𝟙: no stress), no gravity, moving at
+// (1, ±0.5) m/s into the floor or into the ceiling, one substep: the nodes at and beyond the wall
+// lose their normal velocity and, on a rough side (μ = 0.5), their tangential velocity by μ times
+// that (1 m/s is far above the 0.25 m/s lost, so none stops). APIC's transfers keep the grid's
+// momentum, so the block's momentum changes by ΔP_x = −μ |ΔP_y| on a rough side and by ΔP_x = 0 on
+// a smooth one (1e-10 of |P|). Only one of floor and ceiling is rough at a time.
+BOOST_AUTO_TEST_CASE(each_side_of_the_box_has_its_own_wall_friction) {
+  const double mu = 0.5;
+  const auto momentum = [](const Particles<2>& ps) {
+    Vec<2> P = Vec<2>::Zero();
+    for (std::size_t i = 0; i < ps.size(); ++i) P += ps.m[i] * ps.v[i];
+    return P;
+  };
+  for (const bool ceiling : {false, true})
+    for (const int rough_side : {2, 3}) {  // the floor (y−) or the ceiling (y+) is the rough one
+      BOOST_TEST_CONTEXT("into the " << (ceiling ? "ceiling" : "floor") << ", rough side " << rough_side) {
+        Params<2> p = box(0.2, 0.2, 0.01);
+        p.rough = {false, false, false, false};
+        p.rough[rough_side] = true;
+        p.wall_friction = mu;
+        Particles<2> ps;
+        const double y0 = ceiling ? 0.15 : 0.0;
+        fill<2>(ps, Vec<2>(0.05, y0), Vec<2>(0.15, y0 + 0.05), 0.005, 1800.0, Phase::Sand);
+        for (auto& v : ps.v) v = Vec<2>(1.0, ceiling ? 0.5 : -0.5);
+        const Vec<2> P0 = momentum(ps);
+        MpmSolver<2> solver(p, ps);
+        solver.substep(1e-4);
+        const Vec<2> dP = momentum(solver.particles()) - P0;
+        const bool rough = rough_side == (ceiling ? 3 : 2);
+        BOOST_TEST(std::abs(dP[1]) >= 0.05 * std::abs(P0[1]));  // the wall stopped the sand next to it
+        BOOST_TEST(std::abs(dP[0] - (rough ? -mu * std::abs(dP[1]) : 0.0)) <= 1e-10 * P0.norm());
+      }
+    }
+}
+
 // [Hu 2018: MLS-MPM force] A column of elastic sand (cohesion high enough never to yield, ν = 0)
 // 0.2 m wide and H = 0.1 m high, ρ = 1800 kg/m^3, on grids of 0.01 and 0.005 m (CB-Geo's
 // hydrostatic column), damped to rest: the bottom row's σ_yy is −ρ g H to within 5 % on the coarse
@@ -460,6 +496,35 @@ BOOST_AUTO_TEST_CASE(saturation_is_the_water_fraction_of_the_pores) {
       BOOST_TEST(solver.cohesion(i) == 1000.0 * (1.0 - fill_fraction), boost::test_tools::tolerance(1e-9));
     }
   }
+}
+
+// [Zienkiewicz & Shiomi 1984: u-U equations] [Tampubolon 2017: weakly compressible water] The pore
+// water's pressure in a mixture is its Cauchy pressure, Tait's p(ρ0/J) = B ((1/J)^γ − 1), not the
+// Kirchhoff −τ = J p. Water filling the pores of a sand block (n = 0.4, on the sand's lattice),
+// compressed to J = 0.95, no gravity, one substep of 1e-6 s: every water particle carries
+// p = 24 684 Pa (c = 20 m/s, γ = 7) to 1e-12, and every sand particle reads that pore pressure
+// through the grid to 1e-10 (the water's nodal pressure is uniform and the weights add up to 1).
+BOOST_AUTO_TEST_CASE(the_pore_waters_pressure_is_its_cauchy_pressure) {
+  Params<2> p = box(0.2, 0.2, 0.02);
+  p.porosity = 0.4;
+  Particles<2> ps;
+  fill<2>(ps, Vec<2>(0.05, 0.05), Vec<2>(0.15, 0.15), 0.01, 1800.0, Phase::Sand);
+  const std::size_t sand = ps.size();
+  fill_pores<2>(ps, Vec<2>(0.05, 0.05), Vec<2>(0.15, 0.15), 0.01, p.porosity);
+  const double J = 0.95;
+  for (std::size_t i = sand; i < ps.size(); ++i) ps.J[i] = J;
+  const double B = 1000.0 * p.eos.sound_speed * p.eos.sound_speed / p.eos.gamma;
+  const double expected = B * (std::pow(1.0 / J, p.eos.gamma) - 1.0);
+  BOOST_TEST(expected == 24684.16, boost::test_tools::tolerance(1e-6));
+  MpmSolver<2> solver(p, ps);
+  solver.substep(1e-6);
+  double water_error = 0.0, sand_error = 0.0;
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    double& worst = i < sand ? sand_error : water_error;
+    worst = std::max(worst, std::abs(solver.particles().pressure[i] / expected - 1.0));
+  }
+  BOOST_TEST(water_error <= 1e-12);
+  BOOST_TEST(sand_error <= 1e-10);
 }
 
 /// The period of an elastic bar along x, its left end at x = 0.5 m: L = 1 m long, 0.1 m thick,
@@ -817,6 +882,30 @@ BOOST_AUTO_TEST_CASE(the_waters_kirchhoff_stress_is_j_times_its_tait_pressure) {
     BOOST_TEST((tau2 + J * p * Mat<2>::Identity()).norm() <= 1e-12 * J * p);
   }
   BOOST_TEST(water_kirchhoff<3>(1.0, rho0, eos).norm() == 0.0);
+}
+
+// What MPM reports of its water (MpmMethod::particles): a particle's density is its mass over its
+// volume now, m/(J V0), and its pressure is Tait's at that density. A water block compressed to
+// J = 0.95 reports ρ0/J = 1052.63 kg/m^3 (1e-12) and B ((1/J)^γ − 1) = 24 684 Pa (c = 20 m/s, γ = 7;
+// 1e-10: seen through the grid, a uniform field is unchanged).
+BOOST_AUTO_TEST_CASE(a_compressed_water_block_reports_its_density_and_taits_pressure) {
+  const Params<2> p = box(0.2, 0.2, 0.01);
+  Particles<2> ps;
+  fill<2>(ps, Vec<2>(0.05, 0.05), Vec<2>(0.15, 0.15), 0.005, 1000.0, Phase::Water);
+  const double J = 0.95;
+  for (double& j : ps.J) j = J;
+  const MpmMethod<2> method(MpmSolver<2>(p, ps), 1e-3, 0.01, std::vector<std::uint8_t>(ps.size(), 0));
+  const ParticleView<2> view = method.particles();
+  const double B = 1000.0 * p.eos.sound_speed * p.eos.sound_speed / p.eos.gamma;
+  const double p_tait = B * (std::pow(1.0 / J, p.eos.gamma) - 1.0);
+  double density_error = 0.0, pressure_error = 0.0;
+  for (std::size_t i = 0; i < view.size(); ++i) {
+    density_error = std::max(density_error, std::abs(view.density[i] / (1000.0 / J) - 1.0));
+    pressure_error = std::max(pressure_error, std::abs(view.pressure[i] / p_tait - 1.0));
+  }
+  BOOST_TEST(view.size() == ps.size());
+  BOOST_TEST(density_error <= 1e-12);
+  BOOST_TEST(pressure_error <= 1e-10);
 }
 
 // A runaway speed (one sand particle at 1e6 m/s) shrinks the CFL substep to 4e-9 s, 2.5e5 substeps

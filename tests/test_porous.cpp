@@ -750,6 +750,34 @@ BOOST_AUTO_TEST_CASE(a_gap_that_water_beside_fills_does_not_cut_the_column) {
   }
 }
 
+// The 3-D pond: a column's gap is bridged by water in any of the 3^2 columns around it (its own and
+// the 8 beside). Three columns in a row along y, ten rows deep, s = 0.01 m, full particles of
+// mass ρ^f s³: the first two miss their particles of rows 5 and 6 from the top, the third is full.
+// The full third column beside the second's hole carries the weight on, so every particle of the
+// second carries all the particles above it in its column, ρ^f g s (k + 1/2); the first, with only
+// the holed second beside it (the third is two columns away), ends at its hole: its particles below
+// the hole carry only those below the hole; the third has no gap. To 1e-12.
+BOOST_AUTO_TEST_CASE(a_gap_that_water_beside_fills_does_not_cut_a_3d_column) {
+  const double s = kDx, m = kRho * s * s * s;
+  ParticleSet<3> ps;
+  for (int col = 0; col < 3; ++col)
+    for (int row = 0; row < 10; ++row) {
+      if (col < 2 && (row == 4 || row == 5)) continue;  // the hole: z = 0.045 and 0.055
+      const std::size_t i = ps.append();
+      ps.x[i] = Vec<3>(0.5 * s, (col + 0.5) * s, (row + 0.5) * s);
+      ps.m[i] = m;
+      ps.phase[i] = static_cast<std::uint8_t>(Phase::Water);
+    }
+  const std::vector<double> P = water_column_pressure(ps, s, m, kRho, 9.81);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const bool cut = ps.x[i][1] < s && ps.x[i][2] < 0.04;  // first column, below its hole
+    double k = 0.0;  // particles above i in its column that it carries
+    for (std::size_t j = 0; j < ps.size(); ++j)
+      k += std::abs(ps.x[j][1] - ps.x[i][1]) < 0.5 * s && ps.x[j][2] > ps.x[i][2] && !(cut && ps.x[j][2] > 0.04);
+    BOOST_TEST(P[i] == kRho * 9.81 * s * (k + 0.5), boost::test_tools::tolerance(1e-12));
+  }
+}
+
 BOOST_AUTO_TEST_CASE(wet_rest_density_eq_31) {
   // [thesis eq. 31] dry gives ρ0; a saturated bulk gives ρ0 + φ ρ^f.
   BOOST_TEST(wet_rest_density(1600.0, 0.0, 0.4, 1000.0) == 1600.0);

@@ -317,4 +317,54 @@ BOOST_AUTO_TEST_CASE(planar_body_keeps_its_spin) {
   BOOST_TEST(((ps.x[far] - s.centre) - rotation<2>(AngVec<2>(3.0)) * r0).norm() < 1e-12 * r0.norm());
 }
 
+BOOST_AUTO_TEST_CASE(start_up_damping_scales_the_members_velocities_and_not_their_step) {
+  // The start-up relaxation scales every moving particle's new velocity by the factor d
+  // (symplectic_euler_step: v ← d (v + Δt F/m)); move_clusters does the same to a rigid cluster,
+  // v_i ← d (v_cm + ω' × (x_i − r_cm')), with the positions of the undamped step. One step of a
+  // spinning 40-mass body under gravity with d = 0.5 (a power of two, so the scaling is exact) gives
+  // exactly half the member velocities of d = 1, at the same positions.
+  ParticleSet<3> ps = random_body<3>(40, Vec<3>(0.4, 0.25, 0.15), 19);
+  set_rigid_velocity<3>(ps, Vec<3>(0.3, -0.1, 0.2), Vec<3>(1.0, 2.0, 0.5));
+  for (std::size_t i = 0; i < ps.size(); ++i) ps.force[i] = ps.m[i] * Vec<3>(0.0, 0.0, -9.81);
+  const Clusters clusters = one_cluster(ps);
+  const double dt = 1e-3;
+  const std::vector<ClusterMotion<3>> motions = cluster_motions<3>(ps, clusters, dt);
+  BOOST_TEST_REQUIRE(motions[0].velocity.norm() > 0.3);
+  ParticleSet<3> undamped = ps, damped = ps;
+  move_clusters<3>(undamped, clusters, motions, dt, 1.0);
+  move_clusters<3>(damped, clusters, motions, dt, 0.5);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    BOOST_TEST((damped.v[i] - 0.5 * undamped.v[i]).norm() == 0.0);
+    BOOST_TEST((damped.x[i] - undamped.x[i]).norm() == 0.0);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_cluster_of_many_chunks_has_the_motion_of_all_its_members) {
+  // cluster_motions sums a large cluster's members by chunks (of 512, in parallel) and adds the
+  // chunks' sums: M, r_cm, P, L, I (eqs 13-17), v_cm = P/M and ω = I⁻¹L must be those of
+  // rigid_motion, which sums every member in one pass. A 1300-member body (three chunks) of random
+  // masses, spinning, under gravity and random member forces, one step of 1 ms: equal to round-off
+  // (1e-12 relative; the centre within 1e-12 of the body's length).
+  ParticleSet<3> ps = random_body<3>(1300, Vec<3>(0.4, 0.25, 0.15), 23);
+  set_rigid_velocity<3>(ps, Vec<3>(0.3, -0.1, 0.2), Vec<3>(1.0, 2.0, 0.5));
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    const Vec<3> push(u(rng), u(rng), u(rng));
+    ps.force[i] = ps.m[i] * Vec<3>(0.0, 0.0, -9.81) + push;
+  }
+  const Clusters clusters = one_cluster(ps);
+  const double dt = 1e-3;
+  const ClusterMotion<3> chunked = cluster_motions<3>(ps, clusters, dt)[0];
+  const ClusterMotion<3> whole = sc::rigid_motion<3>(clusters[0], ps.m, ps.x, ps.v, ps.force, dt);
+  const auto rel = [](const auto& a, const auto& b) { return (a - b).norm() / b.norm(); };
+  BOOST_TEST(chunked.mass == whole.mass, boost::test_tools::tolerance(1e-13));
+  BOOST_TEST((chunked.centre - whole.centre).norm() <= 1e-12 * 0.4);
+  BOOST_TEST(rel(chunked.momentum, whole.momentum) <= 1e-12);
+  BOOST_TEST(rel(chunked.angular_momentum, whole.angular_momentum) <= 1e-12);
+  BOOST_TEST(rel(chunked.inertia, whole.inertia) <= 1e-12);
+  BOOST_TEST(rel(chunked.velocity, whole.velocity) <= 1e-12);
+  BOOST_TEST(rel(chunked.omega, whole.omega) <= 1e-12);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -60,6 +60,18 @@ std::vector<std::size_t> all_indices(std::size_t n) {
   return out;
 }
 
+/// The sum of the particles' forces and the sum of their sizes, Σ f and Σ |f|: a set of pair forces
+/// that conserves momentum has |Σ f| at round-off of Σ |f|.
+std::pair<Vec<2>, double> force_balance(const ParticleSet<2>& ps) {
+  Vec<2> total = Vec<2>::Zero();
+  double scale = 0.0;
+  for (const auto& f : ps.force) {
+    total += f;
+    scale += f.norm();
+  }
+  return {total, scale};
+}
+
 /// Random 3-D velocity field with random pressures on a jittered sand lattice.
 ParticleSet<2> jittered_sand(unsigned seed, int n, double dx) {
   ParticleSet<2> ps = sand_lattice(n, dx);
@@ -436,6 +448,29 @@ BOOST_AUTO_TEST_CASE(frictional_force_eq_19_conserves_momentum_and_dissipates) {
   BOOST_TEST(expected == 0.0);
 }
 
+BOOST_AUTO_TEST_CASE(frictional_forces_between_grains_of_two_supports_conserve_momentum) {
+  // [thesis eq. 19] corrected (19′): each side of a pair evaluates d_ij with the other grain's own
+  // support h_j (kernel::support_of), so the pair term is antisymmetric and the frictional forces sum
+  // to zero also where neighbours have different supports, as after an adaptive split (a level-1
+  // grain has 2^(1/D) times the support of a level-0 one). A jittered sand lattice with every third
+  // grain at √2 times the support and random symmetric stresses up to 100 Pa: |Σ f| ≤ 1e-12 Σ |f|.
+  ParticleSet<2> ps = jittered_sand(41, 10, 0.01);
+  for (std::size_t i = 0; i < ps.size(); i += 3) ps.h[i] *= std::sqrt(2.0);
+  NeighbourGrid<2> nb = neighbours_with_density(ps);
+  std::mt19937 rng(43);
+  std::uniform_real_distribution<double> u(-100.0, 100.0);
+  MatArray<2> stress(ps.size());
+  for (auto& S : stress) {
+    const double xx = u(rng), yy = u(rng), xy = u(rng);
+    S << xx, xy, xy, yy;
+  }
+  for (auto& f : ps.force) f.setZero();
+  add_frictional_forces(ps, nb, stress, MatArray<2>{});
+  const auto [total, scale] = force_balance(ps);
+  BOOST_TEST(scale > 0.0);
+  BOOST_TEST(total.norm() <= 1e-12 * scale);
+}
+
 BOOST_AUTO_TEST_CASE(all_sand_forces_conserve_momentum) {
   // The sum of every sand force (pressure, friction eq 19, viscosity, Bell contact) and of the
   // water forces on a mixed sand-water cloud without walls is zero: sand-water pairs are symmetric.
@@ -461,12 +496,7 @@ BOOST_AUTO_TEST_CASE(all_sand_forces_conserve_momentum) {
   add_water_sand_contact(ps, nb, sand, 20.0, 1e-4);
   update_sand_state(ps, nb, sand, 9.81, 1e-4, stress, predicted);
   add_frictional_forces(ps, nb, stress, correction);
-  Vec<2> total = Vec<2>::Zero();
-  double scale = 0.0;
-  for (const auto& f : ps.force) {
-    total += f;
-    scale += f.norm();
-  }
+  const auto [total, scale] = force_balance(ps);
   BOOST_TEST(scale > 0.0);
   BOOST_TEST(total.norm() < 1e-12 * scale);
 }
@@ -912,6 +942,100 @@ BOOST_AUTO_TEST_CASE(rigid_block_landing_on_a_floor_obeys_coulomb_at_the_contact
     BOOST_TEST(kinetic < 0.5 * motion.mass * v0.squaredNorm());
     BOOST_TEST(motion.velocity[0] > 0.0);  // still sliding forward
   }
+}
+
+BOOST_AUTO_TEST_CASE(a_grain_meets_a_wall_particle_at_the_mean_of_their_spacings) {
+  // The wall is the union of its particles' spheres: a grain of rest spacing s_i touches a wall
+  // particle of spacing s_w at s = (s_i + s_w)/2, the distance of the Bell contact. A rigid 10 x 5
+  // block (dx = 0.01 m) over a two-row floor of half its spacing (the same lattice calibration at
+  // dx/2, so s_w = s_i/2 and s = 0.75 s_i), with one floor particle under each bottom grain and the
+  // bottom row 0.5 mm beyond the contact distance: the closest contact's gap is 0.5 mm. Falling at
+  // 0.2 m/s the block closes 0.2 mm in a step of 1 ms, so the floor gives no impulse and its motion
+  // is unchanged, bitwise.
+  const double dx = 0.01, fine = 0.5 * dx, gap = 5e-4, dt = 1e-3;
+  const double s_i = rest_spacing<2>(lattice_mass<2>(2000.0, dx, 2.0 * dx, kernel::DensityKernel::Spiky), 2000.0);
+  const double s_w = rest_spacing<2>(lattice_mass<2>(1000.0, fine, 2.0 * fine, kernel::DensityKernel::Spiky), 1000.0);
+  const double contact = 0.5 * (s_i + s_w);
+  ParticleSet<2> ps;
+  const auto members = add_sand_block<2>(ps, Vec<2>(0.0, 0.0), Vec<2>(0.1, 0.05), dx, Vec<2>(0.0, -0.2), Vec<2>::Zero());
+  add_floor<2>(ps, -0.0525, 0.1525, 0.5 * dx - contact - gap, 2, fine, false);  // x = -0.05 + k dx/2
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  const ClusterMotion<2> free = rigid_motion<2>(members, ps.m, ps.x, ps.v, ps.force, dt);
+  const auto contacts = cluster_wall_contacts<2>(ps, nb, members, free.centre);
+  BOOST_TEST_REQUIRE(!contacts.empty());
+  double closest = INFINITY;
+  for (const auto& c : contacts) closest = std::min(closest, c.gap);
+  BOOST_TEST(closest == gap, tt::tolerance(1e-9));
+  ClusterMotion<2> motion = free;
+  const ContactImpulse<2> J = resolve_wall_contacts<2>(motion, contacts, true, dt, 0.0);
+  BOOST_TEST(J.normal.norm() == 0.0);
+  BOOST_TEST((motion.velocity.array() == free.velocity.array()).all());
+  BOOST_TEST((motion.omega.array() == free.omega.array()).all());
+}
+
+BOOST_AUTO_TEST_CASE(an_overlapping_wall_contact_is_held_not_pushed_out) {
+  // resolve_wall_contacts only keeps an overlapping contact from deepening, u·n ≥ −max(g, 0)/Δt = 0;
+  // pushing it back out is the Bell contact force's work (overlap/Δt would throw a grain off the
+  // wall in one step). (1) A body that cannot spin (M = 2 kg) 0.1 mm into a floor contact: sliding
+  // along it at (0.3, 0) m/s it gets no impulse and keeps its velocity exactly; approaching at
+  // (0.3, −0.5) m/s it gets λ = 0.5 M = 1 N s and ends at (0.3, 0), at rest along the normal. (2) A
+  // rigid 10 x 5 block at rest, without force, whose bottom row overlaps a floor by 0.1 mm: no
+  // impulse, and it stays exactly at rest.
+  const double dt = 1e-3, overlap = 1e-4;
+  WallContact<2> below;
+  below.normal = Vec<2>(0.0, 1.0);
+  below.gap = -overlap;
+  const std::vector<WallContact<2>> one{below};
+  for (const double vy : {0.0, -0.5}) {
+    ClusterMotion<2> motion;
+    motion.mass = 2.0;
+    motion.velocity = Vec<2>(0.3, vy);
+    motion.momentum = motion.mass * motion.velocity;
+    const ContactImpulse<2> J = resolve_wall_contacts<2>(motion, one, false, dt, 0.0);
+    BOOST_TEST(std::abs(J.normal[1] + motion.mass * vy) < 1e-12);
+    BOOST_TEST(motion.velocity[0] == 0.3);
+    BOOST_TEST(std::abs(motion.velocity[1]) < 1e-12);
+  }
+  const double dx = 0.01;
+  ParticleSet<2> ps;
+  const auto members = add_sand_block<2>(ps, Vec<2>(0.0, 0.0), Vec<2>(0.1, 0.05), dx, Vec<2>::Zero(), Vec<2>::Zero());
+  add_floor<2>(ps, -0.05, 0.15, 0.5 * dx - sand_wall_contact_distance(dx) + overlap, 2, dx, false);
+  NeighbourGrid<2> nb;
+  nb.rebuild(ps);
+  ClusterMotion<2> motion = rigid_motion<2>(members, ps.m, ps.x, ps.v, ps.force, dt);
+  const auto contacts = cluster_wall_contacts<2>(ps, nb, members, motion.centre);
+  BOOST_TEST_REQUIRE(std::count_if(contacts.begin(), contacts.end(),
+                                   [&](const WallContact<2>& c) { return c.gap < -0.5 * overlap; }) >= 10);
+  const ContactImpulse<2> J = resolve_wall_contacts<2>(motion, contacts, true, dt, 0.0);
+  BOOST_TEST(J.normal.norm() == 0.0);
+  BOOST_TEST(motion.velocity.norm() == 0.0);
+  BOOST_TEST(motion.omega.norm() == 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(friction_of_a_closing_wall_contact_lies_in_the_wall_plane) {
+  // Coulomb friction at a rough wall contact opposes the tangential velocity u − (u·n) n only, so its
+  // impulse lies in the wall's plane, also while the contact is still closing its gap. A body that
+  // cannot spin (M = 2 kg) at v = (1, −1.5) m/s over a floor contact (n = (0, 1)) with a gap of
+  // 0.5 mm, Δt = 1 ms, μ = 0.25: the gap lets it approach at 0.5 m/s, so λ_n = M (1.5 − 0.5) = 2 N s;
+  // stopping the slide would take M · 1 m/s = 2 N s > μ λ_n = 0.5 N s, so it slides on with
+  // J_t = (−0.5, 0) N s and v = (1 − 0.5/M, −0.5) = (0.75, −0.5) m/s, to round-off.
+  ClusterMotion<2> motion;
+  motion.mass = 2.0;
+  motion.velocity = Vec<2>(1.0, -1.5);
+  motion.momentum = motion.mass * motion.velocity;
+  WallContact<2> below;
+  below.normal = Vec<2>(0.0, 1.0);
+  below.gap = 5e-4;
+  below.rough = true;
+  const std::vector<WallContact<2>> contacts{below};
+  const ContactImpulse<2> J = resolve_wall_contacts<2>(motion, contacts, false, 1e-3, 0.25);
+  BOOST_TEST(J.normal[1] == 2.0, tt::tolerance(1e-12));
+  BOOST_TEST(J.tangential[0] == -0.5, tt::tolerance(1e-12));
+  BOOST_TEST(std::abs(J.tangential[1]) < 1e-12);  // no friction impulse along the normal
+  BOOST_TEST(motion.velocity[0] == 0.75, tt::tolerance(1e-12));
+  BOOST_TEST(motion.velocity[1] == -0.5, tt::tolerance(1e-12));
+  BOOST_TEST((motion.momentum - motion.mass * motion.velocity).norm() < 1e-12);
 }
 
 BOOST_AUTO_TEST_CASE(rigid_sand_mushroom_stands_on_its_stem_at_the_thesis_step) {
